@@ -1,0 +1,20 @@
+#include "dwt/params.h"
+
+#include "dwt/error.h"
+
+#include <string>
+
+namespace dwt {
+
+void validate(const DwtParams& p, int width, int height) {
+  if (width <= 0 || height <= 0)
+    throw DwtError("empty plane (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+  if (p.origin.x < 0 || p.origin.y < 0) throw DwtError("the origin on the reference grid must be non-negative");
+  if (p.levels < 0) throw DwtError("negative level count");
+  const int most = max_levels(width, height, p.origin);
+  if (p.levels > most)
+    throw DwtError(std::to_string(p.levels) + " levels requested but a " + std::to_string(width) + "x" +
+                   std::to_string(height) + " plane allows at most " + std::to_string(most));
+}
+
+}  // namespace dwt

@@ -1,0 +1,32 @@
+#pragma once
+#include <memory>
+
+#include "dwt/backend.h"
+#include "dwt_cpu/thread_pool.h"
+
+namespace dwt_cpu {
+
+// Lifting on the CPU: every kernel, every boundary scheme; exact integers for the reversible 5/3.
+// Per level: vertical then horizontal (T.800 F.4.2's 2D_SD order, which matters for the rounding of
+// the reversible kernel), inverse in the mirror order.
+class CpuBackend final : public dwt::DwtBackend {
+ public:
+  explicit CpuBackend(int threads = 0);  // 0: one per hardware thread
+
+  std::string name() const override;
+  bool supports(dwt::KernelId kernel) const override;
+  int threads() const { return pool_.size(); }
+
+  void forward(dwt::PlaneSpan<float> plane, const dwt::DwtParams& params) override;
+  void inverse(dwt::PlaneSpan<float> plane, const dwt::DwtParams& params) override;
+  void forward(dwt::PlaneSpan<std::int32_t> plane, const dwt::DwtParams& params) override;
+  void inverse(dwt::PlaneSpan<std::int32_t> plane, const dwt::DwtParams& params) override;
+
+ private:
+  template <class T>
+  void transform(dwt::PlaneSpan<T> plane, const dwt::DwtParams& params, bool inverse);
+
+  ThreadPool pool_;
+};
+
+}  // namespace dwt_cpu

@@ -1,0 +1,118 @@
+// Highway's foreach_target re-includes this file once per SIMD target.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "src/lifting_simd.cpp"
+#include <hwy/foreach_target.h>  // must precede highway.h
+#include <hwy/highway.h>
+
+#include "lifting_simd.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace dwt_cpu::simd {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+void LiftSymmetric(float* HWY_RESTRICT t, const float* HWY_RESTRICT l, const float* HWY_RESTRICT r, float c,
+                   std::size_t n) {
+  const hn::ScalableTag<float> d;
+  const std::size_t N = hn::Lanes(d);
+  const auto vc = hn::Set(d, c);
+  std::size_t i = 0;
+  for (; i + N <= n; i += N)
+    hn::StoreU(hn::MulAdd(vc, hn::Add(hn::LoadU(d, l + i), hn::LoadU(d, r + i)), hn::LoadU(d, t + i)), d, t + i);
+  for (; i < n; ++i) t[i] += c * (l[i] + r[i]);
+}
+
+void LiftGeneral(float* HWY_RESTRICT t, const float* HWY_RESTRICT l, const float* HWY_RESTRICT r, float cl, float cr,
+                 std::size_t n) {
+  const hn::ScalableTag<float> d;
+  const std::size_t N = hn::Lanes(d);
+  const auto vl = hn::Set(d, cl), vr = hn::Set(d, cr);
+  std::size_t i = 0;
+  for (; i + N <= n; i += N) {
+    auto v = hn::MulAdd(vl, hn::LoadU(d, l + i), hn::LoadU(d, t + i));
+    hn::StoreU(hn::MulAdd(vr, hn::LoadU(d, r + i), v), d, t + i);
+  }
+  for (; i < n; ++i) t[i] += cl * l[i] + cr * r[i];
+}
+
+void Scale(float* HWY_RESTRICT t, float s, std::size_t n) {
+  const hn::ScalableTag<float> d;
+  const std::size_t N = hn::Lanes(d);
+  const auto vs = hn::Set(d, s);
+  std::size_t i = 0;
+  for (; i + N <= n; i += N) hn::StoreU(hn::Mul(hn::LoadU(d, t + i), vs), d, t + i);
+  for (; i < n; ++i) t[i] *= s;
+}
+
+void Predict53(std::int32_t* HWY_RESTRICT t, const std::int32_t* HWY_RESTRICT l, const std::int32_t* HWY_RESTRICT r,
+               std::size_t n, bool inverse) {
+  const hn::ScalableTag<std::int32_t> d;
+  const std::size_t N = hn::Lanes(d);
+  std::size_t i = 0;
+  // Arithmetic shift right is floor division for negative sums too, as T.800 requires.
+  if (inverse) {
+    for (; i + N <= n; i += N)
+      hn::StoreU(hn::Add(hn::LoadU(d, t + i), hn::ShiftRight<1>(hn::Add(hn::LoadU(d, l + i), hn::LoadU(d, r + i)))), d,
+                 t + i);
+    for (; i < n; ++i) t[i] += (l[i] + r[i]) >> 1;
+  } else {
+    for (; i + N <= n; i += N)
+      hn::StoreU(hn::Sub(hn::LoadU(d, t + i), hn::ShiftRight<1>(hn::Add(hn::LoadU(d, l + i), hn::LoadU(d, r + i)))), d,
+                 t + i);
+    for (; i < n; ++i) t[i] -= (l[i] + r[i]) >> 1;
+  }
+}
+
+void Update53(std::int32_t* HWY_RESTRICT t, const std::int32_t* HWY_RESTRICT l, const std::int32_t* HWY_RESTRICT r,
+              std::size_t n, bool inverse) {
+  const hn::ScalableTag<std::int32_t> d;
+  const std::size_t N = hn::Lanes(d);
+  const auto two = hn::Set(d, 2);
+  std::size_t i = 0;
+  if (inverse) {
+    for (; i + N <= n; i += N)
+      hn::StoreU(hn::Sub(hn::LoadU(d, t + i),
+                         hn::ShiftRight<2>(hn::Add(hn::Add(hn::LoadU(d, l + i), hn::LoadU(d, r + i)), two))),
+                 d, t + i);
+    for (; i < n; ++i) t[i] -= (l[i] + r[i] + 2) >> 2;
+  } else {
+    for (; i + N <= n; i += N)
+      hn::StoreU(hn::Add(hn::LoadU(d, t + i),
+                         hn::ShiftRight<2>(hn::Add(hn::Add(hn::LoadU(d, l + i), hn::LoadU(d, r + i)), two))),
+                 d, t + i);
+    for (; i < n; ++i) t[i] += (l[i] + r[i] + 2) >> 2;
+  }
+}
+
+std::int64_t CurrentTarget() { return HWY_TARGET; }
+
+}  // namespace HWY_NAMESPACE
+}  // namespace dwt_cpu::simd
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace dwt_cpu::simd {
+HWY_EXPORT(LiftSymmetric);
+HWY_EXPORT(LiftGeneral);
+HWY_EXPORT(Scale);
+HWY_EXPORT(Predict53);
+HWY_EXPORT(Update53);
+HWY_EXPORT(CurrentTarget);
+
+void lift_symmetric(float* t, const float* l, const float* r, float c, std::size_t n) {
+  HWY_DYNAMIC_DISPATCH(LiftSymmetric)(t, l, r, c, n);
+}
+void lift_general(float* t, const float* l, const float* r, float cl, float cr, std::size_t n) {
+  HWY_DYNAMIC_DISPATCH(LiftGeneral)(t, l, r, cl, cr, n);
+}
+void scale(float* t, float s, std::size_t n) { HWY_DYNAMIC_DISPATCH(Scale)(t, s, n); }
+void predict53(std::int32_t* t, const std::int32_t* l, const std::int32_t* r, std::size_t n, bool inverse) {
+  HWY_DYNAMIC_DISPATCH(Predict53)(t, l, r, n, inverse);
+}
+void update53(std::int32_t* t, const std::int32_t* l, const std::int32_t* r, std::size_t n, bool inverse) {
+  HWY_DYNAMIC_DISPATCH(Update53)(t, l, r, n, inverse);
+}
+const char* target_name() { return hwy::TargetName(HWY_DYNAMIC_DISPATCH(CurrentTarget)()); }
+
+}  // namespace dwt_cpu::simd
+#endif

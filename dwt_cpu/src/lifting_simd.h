@@ -1,0 +1,23 @@
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+// Element-wise lifting operations over the lanes of strip lines. Each call combines one target
+// line with its two neighbouring lines; lanes are independent rows (horizontal pass) or columns
+// (vertical pass). Dispatched at run time to the best SIMD target Highway finds.
+namespace dwt_cpu::simd {
+
+// t += c * (l + r)
+void lift_symmetric(float* t, const float* l, const float* r, float c, std::size_t n);
+// t += cl * l + cr * r
+void lift_general(float* t, const float* l, const float* r, float cl, float cr, std::size_t n);
+// t *= s
+void scale(float* t, float s, std::size_t n);
+// Reversible 5/3 (T.800 F.4.8.1): predict t -= floor((l + r) / 2); update t += floor((l + r + 2) / 4).
+// `inverse` undoes the step exactly.
+void predict53(std::int32_t* t, const std::int32_t* l, const std::int32_t* r, std::size_t n, bool inverse);
+void update53(std::int32_t* t, const std::int32_t* l, const std::int32_t* r, std::size_t n, bool inverse);
+
+const char* target_name();  // e.g. "AVX2"
+
+}  // namespace dwt_cpu::simd

@@ -1,0 +1,34 @@
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+#include "dwt/kernel.h"
+
+namespace dwt_cpu {
+
+// A block of lines that owns nothing. Line b holds position b - pad of a boundary-extended 1-D
+// signal, for `lanes` independent signals side by side. The class (low/high) of line b is
+// (b + first_class) & 1. Lifting over the whole padded strip equals convolving the extended signal,
+// so any boundary scheme comes out right in the interior lines.
+template <class T>
+struct Strip {
+  T* data = nullptr;
+  int lines = 0;
+  std::size_t lanes = 0;
+  std::size_t stride = 0;
+  int first_class = 0;
+
+  T* line(int b) const { return data + static_cast<std::size_t>(b) * stride; }
+  int class_of(int b) const { return (b + first_class) & 1; }
+};
+
+// Analysis: the kernel's lifting steps then its gains. Lines within `steps` of either end are left
+// with meaningless values; the caller pads by at least kernel.steps.size().
+void lift_forward(const dwt::Kernel& kernel, const Strip<float>& strip);
+// Synthesis on an interleaved, extended coefficient strip: gains undone, then the steps reversed.
+void lift_inverse(const dwt::Kernel& kernel, const Strip<float>& strip);
+// The reversible 5/3 with T.800's integer rounding.
+void lift_forward(const dwt::Kernel& kernel, const Strip<std::int32_t>& strip);
+void lift_inverse(const dwt::Kernel& kernel, const Strip<std::int32_t>& strip);
+
+}  // namespace dwt_cpu

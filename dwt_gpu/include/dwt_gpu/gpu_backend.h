@@ -1,0 +1,55 @@
+#pragma once
+#include <memory>
+#include <string>
+
+#include "dwt/backend.h"
+#include "glcontext/context.h"
+
+namespace dwt_gpu {
+
+// Wall-clock milliseconds of the last transform's stages, measured with a glFinish before each clock
+// read so GPU work is charged to the stage that issued it (the thesis' Table 4.1 columns).
+struct GpuTimings {
+  double context_ms = 0;  // creating the GL context (only the first transform of a backend pays it)
+  double compile_ms = 0;  // compiling and linking the shader (likewise once)
+  double upload_ms = 0;   // texture and framebuffer creation, address table, plane upload
+  double compute_ms = 0;  // the render passes
+  double download_ms = 0; // reading the plane back
+  double total_ms() const { return context_ms + compile_ms + upload_ms + compute_ms + download_ms; }
+};
+
+// The thesis' method (chapter 4.4-4.6): float32 textures, two framebuffers swapping roles after each
+// pass, one quad per pass over the current low-pass region, and one fragment shader that looks up
+// an indirect address table (boundary-extended address, filter selector, base position) and
+// convolves. Forward and inverse use the same shader with different tables and kernel banks.
+// Float kernels only; the reversible 5/3 stays on the CPU (supports() says so, and the integer
+// entry points throw dwt::DwtError).
+class GpuBackend final : public dwt::DwtBackend {
+ public:
+  // Creates the context lazily on first use unless `eager` is set; platform from GPUJ2K_GL when Auto.
+  explicit GpuBackend(glc::Platform platform = glc::Platform::Auto, bool eager = false);
+  ~GpuBackend() override;
+
+  std::string name() const override;  // "gpu fragment shaders (<renderer>)"
+  bool supports(dwt::KernelId kernel) const override;
+
+  void forward(dwt::PlaneSpan<float> plane, const dwt::DwtParams& params) override;
+  void inverse(dwt::PlaneSpan<float> plane, const dwt::DwtParams& params) override;
+  void forward(dwt::PlaneSpan<std::int32_t> plane, const dwt::DwtParams& params) override;
+  void inverse(dwt::PlaneSpan<std::int32_t> plane, const dwt::DwtParams& params) override;
+
+  // The GL renderer line (renderer | version | platform); creates the context if needed.
+  std::string renderer();
+  const GpuTimings& last_timings() const { return timings_; }
+
+ private:
+  struct State;
+  void ensure_ready();
+  void transform(dwt::PlaneSpan<float> plane, const dwt::DwtParams& params, bool inverse);
+
+  glc::Platform platform_;
+  std::unique_ptr<State> state_;
+  GpuTimings timings_;
+};
+
+}  // namespace dwt_gpu

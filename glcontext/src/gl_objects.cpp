@@ -1,0 +1,64 @@
+// Deleters for every wrapper and the factories of the plain name-only ones.
+#include "glcontext/error.h"
+#include "glcontext/resources.h"
+
+#include <string>
+
+namespace glc {
+namespace detail {
+
+void delete_shader(const GlApi& gl, GLuint id) { gl.glDeleteShader(id); }
+void delete_program(const GlApi& gl, GLuint id) { gl.glDeleteProgram(id); }
+void delete_texture(const GlApi& gl, GLuint id) { gl.glDeleteTextures(1, &id); }
+void delete_framebuffer(const GlApi& gl, GLuint id) { gl.glDeleteFramebuffers(1, &id); }
+void delete_buffer(const GlApi& gl, GLuint id) { gl.glDeleteBuffers(1, &id); }
+void delete_vertex_array(const GlApi& gl, GLuint id) { gl.glDeleteVertexArrays(1, &id); }
+void delete_query(const GlApi& gl, GLuint id) { gl.glDeleteQueries(1, &id); }
+
+}  // namespace detail
+
+namespace {
+
+// glGen* never fails in practice, but a zero name (e.g. no current context)
+// would make the wrapper silently own nothing; fail loudly instead.
+GLuint checked_name(const GlApi& gl, GLuint id, const char* what) {
+  check(gl, what);
+  if (id == 0) throw GlError(std::string(what) + " returned 0 (is a context current?)");
+  return id;
+}
+
+}  // namespace
+
+Texture Texture::create(const GlApi& gl) {
+  GLuint id = 0;
+  gl.glGenTextures(1, &id);
+  return Texture(gl, checked_name(gl, id, "glGenTextures"));
+}
+
+Framebuffer Framebuffer::create(const GlApi& gl) {
+  GLuint id = 0;
+  gl.glGenFramebuffers(1, &id);
+  return Framebuffer(gl, checked_name(gl, id, "glGenFramebuffers"));
+}
+
+Buffer Buffer::create(const GlApi& gl) {
+  GLuint id = 0;
+  gl.glGenBuffers(1, &id);
+  return Buffer(gl, checked_name(gl, id, "glGenBuffers"));
+}
+
+VertexArray VertexArray::create(const GlApi& gl) {
+  GLuint id = 0;
+  gl.glGenVertexArrays(1, &id);
+  return VertexArray(gl, checked_name(gl, id, "glGenVertexArrays"));
+}
+
+void VertexArray::bind() const { api()->glBindVertexArray(id()); }
+
+Query Query::create(const GlApi& gl) {
+  GLuint id = 0;
+  gl.glGenQueries(1, &id);
+  return Query(gl, checked_name(gl, id, "glGenQueries"));
+}
+
+}  // namespace glc

@@ -1,0 +1,46 @@
+#include "sanitizer_pin.h"
+
+#if defined(__SANITIZE_ADDRESS__)
+#define GLC_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define GLC_ASAN 1
+#endif
+#endif
+
+#ifdef GLC_ASAN
+#include <dlfcn.h>
+#include <link.h>
+
+#include <cstring>
+#endif
+
+namespace glc::detail {
+
+#ifdef GLC_ASAN
+namespace {
+
+// Mesa's DRI megadriver (swrast_dri.so, ..._dri.so), its newer libgallium
+// split, and libOSMesa.
+bool is_driver_library(const char* path) {
+  return std::strstr(path, "_dri.so") != nullptr || std::strstr(path, "libgallium") != nullptr ||
+         std::strstr(path, "libOSMesa") != nullptr;
+}
+
+int pin_one(dl_phdr_info* info, size_t, void*) {
+  if (info->dlpi_name != nullptr && is_driver_library(info->dlpi_name)) {
+    // RTLD_NOLOAD only bumps the reference count of an already loaded
+    // library; the handle is deliberately never closed.
+    dlopen(info->dlpi_name, RTLD_NOW | RTLD_NOLOAD);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void pin_driver_libraries() noexcept { dl_iterate_phdr(pin_one, nullptr); }
+#else
+void pin_driver_libraries() noexcept {}
+#endif
+
+}  // namespace glc::detail

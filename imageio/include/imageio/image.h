@@ -1,0 +1,41 @@
+#pragma once
+
+#include <cassert>
+#include <cstddef>
+#include <vector>
+
+#include "imageio/error.h"
+
+namespace imageio {
+
+// An image in memory, whatever its file format or sample type.
+//
+// Samples are stored as float so that one container covers 8/16-bit integer
+// and floating-point input, but integer samples keep their native integer
+// values (8-bit 0..255, 16-bit 0..65535, signed types as signed) and are
+// never normalised: the codec works on the integer values a file stores.
+struct Image {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  // Precision of integer samples: 8 or 16 for images read from files, any
+  // of 1..16 for generated ones; 32 for float images.
+  int bits_per_sample = 0;
+  bool is_signed = false;
+  bool is_float = false;
+  // Row-major, top row first, channels interleaved.
+  std::vector<float> pixels;
+
+  float& at(int x, int y, int c) { return pixels[index(x, y, c)]; }
+  float at(int x, int y, int c) const { return pixels[index(x, y, c)]; }
+
+ private:
+  std::size_t index(int x, int y, int c) const {
+    assert(x >= 0 && x < width && y >= 0 && y < height && c >= 0 && c < channels);
+    return (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) *
+               static_cast<std::size_t>(channels) +
+           static_cast<std::size_t>(c);
+  }
+};
+
+}  // namespace imageio

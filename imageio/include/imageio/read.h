@@ -1,0 +1,18 @@
+#pragma once
+
+#include <string>
+
+#include "imageio/image.h"
+
+namespace imageio {
+
+// Reads any image: ".pfm" (any case) with our own PFM reader, everything else
+// through OpenImageIO. Native precision is kept: 8/16-bit integer files give
+// integer values with bits_per_sample 8/16, half/float files give is_float.
+// Throws IoError for missing, unreadable, truncated or unsupported files.
+Image read_image(const std::string& path);
+
+// read_image, but the image must have exactly one channel.
+Image read_greyscale(const std::string& path);
+
+}  // namespace imageio

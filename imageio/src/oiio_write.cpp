@@ -1,0 +1,101 @@
+// Writing through OpenImageIO without changing any sample value.
+
+#include <OpenImageIO/imageio.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "atomic_file.h"
+#include "file_extension.h"
+#include "image_checks.h"
+#include "imageio/pfm.h"
+#include "imageio/write.h"
+#include "oiio_messages.h"
+
+namespace imageio {
+namespace {
+
+OIIO::TypeDesc storage_type(const Image& image) {
+  if (image.is_float) return OIIO::TypeDesc::FLOAT;
+  if (image.bits_per_sample <= 8) return image.is_signed ? OIIO::TypeDesc::INT8 : OIIO::TypeDesc::UINT8;
+  return image.is_signed ? OIIO::TypeDesc::INT16 : OIIO::TypeDesc::UINT16;
+}
+
+// Converts to the storage type. Values were checked to be in range
+// integers, so the casts are exact.
+template <typename T>
+std::vector<T> to_storage(const Image& image) {
+  std::vector<T> out(image.pixels.size());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = T(image.pixels[i]);
+  return out;
+}
+
+std::string describe(const Image& image) {
+  return std::to_string(image.bits_per_sample) + "-bit " + (image.is_signed ? "signed" : "unsigned") +
+         " integer samples";
+}
+
+void write_pixels(OIIO::ImageOutput& out, const std::string& path, const Image& image, OIIO::TypeDesc type) {
+  bool ok = false;
+  switch (type.basetype) {
+    case OIIO::TypeDesc::UINT8: ok = out.write_image(type, to_storage<std::uint8_t>(image).data()); break;
+    case OIIO::TypeDesc::INT8: ok = out.write_image(type, to_storage<std::int8_t>(image).data()); break;
+    case OIIO::TypeDesc::UINT16: ok = out.write_image(type, to_storage<std::uint16_t>(image).data()); break;
+    case OIIO::TypeDesc::INT16: ok = out.write_image(type, to_storage<std::int16_t>(image).data()); break;
+    default: ok = out.write_image(type, image.pixels.data());
+  }
+  if (!ok) throw IoError(path, detail::oiio_message(out.geterror(), "cannot write pixel data"));
+}
+
+void write_with_oiio(const std::string& path, const Image& image) {
+  const OIIO::TypeDesc type = storage_type(image);
+  // The writer is chosen from the real path: the temporary's name is not
+  // what decides the format.
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw IoError(path, detail::oiio_message(OIIO::geterror(), "unknown image format"));
+
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, type);
+  // Stops writers from un-premultiplying colour by alpha (PNG, TIFF).
+  spec.attribute("oiio:UnassociatedAlpha", 1);
+  // Some writers (PNM in newer OpenImageIO) pick their bit depth from this.
+  if (!image.is_float) spec.attribute("oiio:BitsPerSample", int(type.size() * 8));
+
+  detail::write_atomically(path, [&](const std::string& temporary) {
+    if (!out->open(temporary, spec)) {
+      throw IoError(path, detail::oiio_message(out->geterror(), "cannot open for writing"));
+    }
+    // Writers silently switch to the nearest type they support (PNG
+    // turns int16 into uint8, EXR turns integers into half, OIIO 2.4's
+    // PNM always uses uint8); OIIO would then rescale the values, so for
+    // integer images that is an error.
+    if (!image.is_float && out->spec().format != type) {
+      // Finish the doomed temporary anyway: some writers (libpng)
+      // complain on stderr when closed without pixels.
+      try {
+        write_pixels(*out, path, image, type);
+      } catch (const IoError&) {
+      }
+      out->close();
+      throw IoError(path,
+                    std::string("the ") + out->format_name() + " format cannot store " + describe(image) + " exactly");
+    }
+    write_pixels(*out, path, image, type);
+    if (!out->close()) {
+      throw IoError(path, detail::oiio_message(out->geterror(), "cannot finish writing"));
+    }
+  });
+}
+
+}  // namespace
+
+void write_image(const std::string& path, const Image& image) {
+  detail::check_layout(path, image);
+  if (!image.is_float) detail::check_integer_samples(path, image);
+  if (detail::has_pfm_extension(path)) {
+    write_pfm(path, image);
+    return;
+  }
+  write_with_oiio(path, image);
+}
+
+}  // namespace imageio
