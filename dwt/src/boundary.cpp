@@ -24,6 +24,7 @@ std::string_view boundary_name(Boundary b) {
 
 std::int64_t extend_index(std::int64_t i, std::int64_t n, Boundary b) {
   if (i >= 0 && i < n) return i;
+  if (n <= 0) return -1;  // an empty signal extends to nothing
   switch (b) {
     case Boundary::Zero:
       return -1;

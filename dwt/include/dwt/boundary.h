@@ -15,8 +15,8 @@ enum class Boundary {
 Boundary parse_boundary(std::string_view name);  // "sym", "per", "zero"
 std::string_view boundary_name(Boundary b);
 
-// Index of the sample that stands at position `i` of the extended signal of length `n` (n >= 1),
-// or -1 where the extension is zero.
+// Index of the sample that stands at position `i` of the extended signal of length `n`, or -1
+// where the extension is zero (and everywhere for an empty signal).
 std::int64_t extend_index(std::int64_t i, std::int64_t n, Boundary b);
 
 }  // namespace dwt
