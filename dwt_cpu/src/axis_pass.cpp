@@ -4,16 +4,17 @@
 #include <cstring>
 #include <vector>
 
+#include "row_lifting.h"
 #include "strip_lifting.h"
 
 namespace dwt_cpu {
 namespace {
 
-// Lanes per strip. Horizontal strips gather rows side by side (a transpose into the strip), so a
-// few rows fill a vector; vertical strips copy contiguous runs of columns, wide enough to stream
-// whole cache lines but small enough that a tall strip stays in L2.
-constexpr std::size_t kHorizontalLanes = 16;
+// Vertical strips copy contiguous runs of columns: wide enough to stream whole cache lines and fill
+// vectors, small enough that a tall strip stays in L2. Horizontal passes lift each row in place of
+// a strip (see run_rows), a block of rows per task.
 constexpr std::size_t kVerticalLanes = 64;
+constexpr std::size_t kRowsPerTask = 16;
 
 struct Layout {
   int n;          // samples along the axis
@@ -31,7 +32,7 @@ Layout layout_of(const AxisPass& p) {
                 static_cast<int>(p.kernel.steps.size()),
                 p.span.parity(),
                 p.span.low_count(),
-                h ? kHorizontalLanes : kVerticalLanes};
+                h ? kRowsPerTask : kVerticalLanes};
 }
 
 // Where strip line b reads its sample from: for the forward transform an index into the signal,
@@ -72,6 +73,47 @@ void single_sample(const AxisPass& p, dwt::PlaneSpan<T> plane, bool inverse) {
     for (int x = 0; x < p.region_width; ++x) apply(plane.at(x, 0));
 }
 
+// Horizontal pass: each row is split into its low and high components (with extension), lifted
+// there, and the interior copied out contiguously: low half then high half (forward), or
+// re-interleaved (inverse).
+template <class T>
+void run_rows(const Layout& L, const AxisPass& p, dwt::PlaneSpan<T> plane, ThreadPool& pool, bool inverse,
+              const std::vector<int>& map) {
+  const int total = L.n + 2 * L.pad;
+  const int first_low = (L.parity - L.pad) & 1 ? 1 : 0;  // extended position 0 is low iff its class is 0
+  const int low_size = (total - first_low + 1) / 2, high_size = (total - (1 - first_low) + 1) / 2;
+  // Interior samples start at extended position pad: the first low/high component index there.
+  const int low_skip = (L.pad - first_low + 1) / 2, high_skip = (L.pad - (1 - first_low) + 1) / 2;
+  const std::size_t tasks = (static_cast<std::size_t>(L.lanes) + kRowsPerTask - 1) / kRowsPerTask;
+  pool.parallel_for(tasks, [&](std::size_t task) {
+    thread_local std::vector<T> scratch;
+    scratch.resize(static_cast<std::size_t>(low_size + high_size));
+    const SplitSignal<T> sig{scratch.data(), scratch.data() + low_size, low_size, high_size, first_low};
+    const int y_end = std::min(L.lanes, static_cast<int>((task + 1) * kRowsPerTask));
+    for (int y = static_cast<int>(task * kRowsPerTask); y < y_end; ++y) {
+      T* row = plane.row(y);
+      auto fetch = [&](int position) {
+        const int src = map[static_cast<std::size_t>(position)];
+        return src < 0 ? T(0) : row[src];
+      };
+      for (int j = 0; j < low_size; ++j) sig.low[j] = fetch(first_low + 2 * j);
+      for (int j = 0; j < high_size; ++j) sig.high[j] = fetch(1 - first_low + 2 * j);
+      if (inverse) {
+        lift_inverse(p.kernel, sig);
+        for (int e = 0; e < L.n; ++e) {
+          const int position = e + L.pad;
+          row[e] = ((position - first_low) & 1) == 0 ? sig.low[(position - first_low) >> 1]
+                                                     : sig.high[(position - 1 + first_low) >> 1];
+        }
+      } else {
+        lift_forward(p.kernel, sig);
+        std::copy_n(sig.low + low_skip, L.low, row);
+        std::copy_n(sig.high + high_skip, L.n - L.low, row + L.low);
+      }
+    }
+  });
+}
+
 template <class T>
 void run(const AxisPass& p, dwt::PlaneSpan<T> plane, ThreadPool& pool, bool inverse) {
   const Layout L = layout_of(p);
@@ -79,6 +121,7 @@ void run(const AxisPass& p, dwt::PlaneSpan<T> plane, ThreadPool& pool, bool inve
   if (L.n == 1) return single_sample(p, plane, inverse);
 
   const std::vector<int> map = source_map(L, p.boundary, inverse);
+  if (p.axis == Axis::Horizontal) return run_rows(L, p, plane, pool, inverse, map);
   const int lines = L.n + 2 * L.pad;
   const std::size_t strips = (static_cast<std::size_t>(L.lanes) + L.strip_lanes - 1) / L.strip_lanes;
   // Line 0 holds position -pad; its class follows from the parity of the first sample.

@@ -1,0 +1,21 @@
+#pragma once
+#include <string>
+#include <vector>
+
+namespace bench {
+
+// A square greyscale plane for benchmarking, with a line saying where its content came from.
+struct BenchPlane {
+  int size = 0;
+  std::vector<float> samples;  // 8-bit luma values, row-major
+  std::string source;
+};
+
+// Natural content where the Kodak photographs are present (a crop of one photograph, or a mosaic of
+// several for sizes beyond 768), the project's synthetic "mix" pattern otherwise.
+BenchPlane make_plane(int size, const std::string& kodak_dir);
+
+// The Kodak folder relative to the project root (../shared/testimages/kodak), or "" if absent.
+std::string find_kodak_dir();
+
+}  // namespace bench

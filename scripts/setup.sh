@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Installs everything the project needs on a fresh Debian 12 machine (Debian packages only).
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config
+  libopenimageio-dev            # image input (PNG, PNM, TIFF, BMP, JPEG, ...)
+  libegl-dev libgl-dev          # EGL and the GL headers (functions are loaded at run time)
+  libegl-mesa0 libgl1-mesa-dri  # Mesa's EGL and llvmpipe, the headless renderer where no GPU is present
+  libosmesa6 libosmesa6-dev     # OSMesa, the last-resort headless context
+  libhwy-dev                    # Highway SIMD with run-time dispatch
+  libcli11-dev                  # command-line parsing
+  libgtest-dev                  # tests
+  libopenjp2-tools grokj2k-tools  # reference decoders the codec's output is checked against
+)
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update
+$SUDO apt-get install -y --no-install-recommends "${PACKAGES[@]}"
