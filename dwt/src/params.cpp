@@ -11,6 +11,8 @@ void validate(const DwtParams& p, int width, int height) {
     throw DwtError("empty plane (" + std::to_string(width) + "x" + std::to_string(height) + ")");
   if (p.origin.x < 0 || p.origin.y < 0) throw DwtError("the origin on the reference grid must be non-negative");
   if (p.levels < 0) throw DwtError("negative level count");
+  if (p.levels > 32) throw DwtError(std::to_string(p.levels) + " levels requested; JPEG 2000 allows at most 32");
+  if (p.levels_may_exceed_size) return;
   const int most = max_levels(width, height, p.origin);
   if (p.levels > most)
     throw DwtError(std::to_string(p.levels) + " levels requested but a " + std::to_string(width) + "x" +
