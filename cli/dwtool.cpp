@@ -1,0 +1,32 @@
+// dwtool: one 2-D discrete wavelet transform of the gpuj2k engine, from file to file, so that the
+// engine can be checked from outside (scripts, other implementations, the test suite).
+//
+//   dwtool forward -i image.png -o coeffs.pfm --kernel 97 --levels 5 --backend gpu
+//   dwtool inverse -i coeffs.pfm -o image.png --kernel 97 --levels 5
+//
+// Any failure prints exactly one line "dwtool: ..." on stderr and exits with 1 (2 for usage
+// errors); no output file is left behind, since it is only written, atomically, after success.
+
+#include <exception>
+#include <iostream>
+
+#include "command_line.h"
+#include "one_line.h"
+#include "request.h"
+#include "transform.h"
+
+int main(int argc, char** argv) {
+  constexpr int kRuntimeExitCode = 1;
+  try {
+    const dwtool::ParsedCommandLine parsed = dwtool::parse_command_line(argc, argv);
+    if (!parsed.options) return parsed.exit_code;
+    dwtool::run(dwtool::resolve(*parsed.options));
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "dwtool: " << dwtool::one_line(e.what()) << '\n';
+  } catch (...) {
+    // Nothing may escape main: an uncaught exception would abort with a multi-line report.
+    std::cerr << "dwtool: unexpected error of unknown type\n";
+  }
+  return kRuntimeExitCode;
+}
