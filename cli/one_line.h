@@ -1,10 +1,10 @@
-// dwtool reports every failure as exactly one line, whatever the library messages it relays contain.
+// The tools report every failure as exactly one line, whatever the library messages they relay contain.
 #pragma once
 
 #include <string>
 #include <string_view>
 
-namespace dwtool {
+namespace cli {
 
 // Folds line breaks (and the blanks around them) into "; " and drops trailing ones.
 inline std::string one_line(std::string_view text) {
@@ -24,4 +24,8 @@ inline std::string one_line(std::string_view text) {
   return out;
 }
 
+}  // namespace cli
+
+namespace dwtool {
+using cli::one_line;
 }  // namespace dwtool

@@ -1,5 +1,7 @@
 #include "request.h"
 
+#include "number_pairs.h"
+
 #include <charconv>
 #include <cstdint>
 #include <stdexcept>
@@ -17,17 +19,6 @@ constexpr std::int64_t kMaxCoordinate = (std::int64_t{1} << 32) - 1;
 // More threads than this only costs start-up time; a typo like 10000 should not spawn them.
 constexpr int kMaxThreads = 1024;
 
-std::int64_t parse_coordinate(std::string_view part, const std::string& whole) {
-  std::int64_t value = 0;
-  // from_chars would accept a leading '-', so require digits only, and at least one.
-  const bool digits_only = !part.empty() && part.find_first_not_of("0123456789") == std::string_view::npos;
-  const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
-  if (!digits_only || ec != std::errc{} || end != part.data() + part.size() || value > kMaxCoordinate) {
-    throw std::invalid_argument("--origin must be two non-negative integers X,Y below 2^32, got \"" + whole + "\"");
-  }
-  return value;
-}
-
 BackendKind parse_backend(const std::string& name) {
   if (name == "cpu") return BackendKind::Cpu;
   if (name == "gpu") return BackendKind::Gpu;
@@ -37,12 +28,8 @@ BackendKind parse_backend(const std::string& name) {
 }  // namespace
 
 dwt::Origin parse_origin(const std::string& text) {
-  const std::size_t comma = text.find(',');
-  if (comma == std::string::npos) {
-    throw std::invalid_argument("--origin must be two non-negative integers X,Y below 2^32, got \"" + text + "\"");
-  }
-  const std::string_view view(text);
-  return dwt::Origin{parse_coordinate(view.substr(0, comma), text), parse_coordinate(view.substr(comma + 1), text)};
+  const auto [x, y] = cli::parse_pair(text, ',', "--origin", kMaxCoordinate);
+  return dwt::Origin{x, y};
 }
 
 Request resolve(const RawOptions& raw) {

@@ -1,5 +1,5 @@
-// Tests for imageio: exact PFM and OpenImageIO round trips, strict PFM header
-// validation, one-line "PATH: problem" errors and atomic writes.
+// Tests for imageio: exact PFM, PNM and OpenImageIO round trips, strict PFM and
+// PNM header validation, one-line "PATH: problem" errors and atomic writes.
 
 #include <gtest/gtest.h>
 
@@ -18,6 +18,7 @@
 
 #include "imageio/image.h"
 #include "imageio/pfm.h"
+#include "imageio/pnm.h"
 #include "imageio/read.h"
 #include "imageio/write.h"
 
@@ -255,6 +256,343 @@ TEST_F(ImageIoTest, PfmWriteRejectsOtherChannelCounts) {
   EXPECT_TRUE(files_in_dir().empty());
 }
 
+// ---------------------------------------------------------------- PNM
+
+// Integer image for PNM tests: the full sweep of integer_image plus the
+// values where 8-bit, 16-bit and byte-order mistakes show (0, 1, 255, 256,
+// 65535 for 16 bits).
+imageio::Image pnm_image(int width, int height, int channels, int bits) {
+  imageio::Image image = integer_image(width, height, channels, bits, false);
+  const float top = float((1 << bits) - 1);
+  const std::vector<float> markers = {0, top, 1, 255, 256, 65535, 258};
+  for (std::size_t i = 0; i < markers.size() && i < image.pixels.size(); ++i) {
+    if (markers[i] <= top) image.pixels[i] = markers[i];
+  }
+  return image;
+}
+
+std::string bytes_of(const std::vector<std::uint8_t>& bytes) { return {bytes.begin(), bytes.end()}; }
+
+std::string pnm_header(const std::string& magic, int width, int height, int maxval) {
+  return magic + "\n" + std::to_string(width) + " " + std::to_string(height) + "\n" + std::to_string(maxval) + "\n";
+}
+
+TEST_F(ImageIoTest, PnmRoundTripIsExact) {
+  for (const int bits : {8, 16}) {
+    for (const auto& [name, channels] : std::vector<std::pair<std::string, int>>{{"grey.pgm", 1}, {"colour.ppm", 3}}) {
+      SCOPED_TRACE(std::to_string(bits) + "-bit " + name);
+      const imageio::Image original = pnm_image(9, 5, channels, bits);
+      const std::string file = path(name);
+      imageio::write_image(file, original);
+      const std::vector<std::uint8_t> bytes = read_bytes(file);
+      const std::string header = pnm_header(channels == 1 ? "P5" : "P6", 9, 5, (1 << bits) - 1);
+      ASSERT_EQ(bytes.size(), header.size() + original.pixels.size() * (bits == 8 ? 1 : 2));
+      EXPECT_EQ(bytes_of(bytes).substr(0, header.size()), header);
+
+      const imageio::Image back = imageio::read_image(file);
+      EXPECT_EQ(back.bits_per_sample, bits);
+      EXPECT_FALSE(back.is_signed);
+      EXPECT_FALSE(back.is_float);
+      expect_same_pixels(original, back);
+      expect_same_pixels(original, imageio::read_pnm(file));
+
+      imageio::write_pnm(file, original);
+      EXPECT_EQ(read_bytes(file), bytes);
+    }
+  }
+  EXPECT_EQ(files_in_dir().size(), 2u);
+}
+
+TEST_F(ImageIoTest, Pnm16BitSamplesAreBigEndian) {
+  imageio::Image image = make_image(4, 1, 1, 16, false);
+  image.pixels = {1, 256, 65535, 0x1234};
+  const std::string file = path("order.pgm");
+  imageio::write_image(file, image);
+  EXPECT_EQ(bytes_of(read_bytes(file)),
+            pnm_header("P5", 4, 1, 65535) + std::string("\x00\x01\x01\x00\xff\xff\x12\x34", 8));
+}
+
+TEST_F(ImageIoTest, PnmKeepsOtherBitDepths) {
+  for (const int bits : {1, 2, 7, 9, 12, 15}) {
+    SCOPED_TRACE(bits);
+    const imageio::Image original = pnm_image(6, 4, bits % 2 ? 1 : 3, bits);
+    const std::string file = path("depth.pnm");
+    imageio::write_image(file, original);
+    const std::string header = pnm_header(original.channels == 1 ? "P5" : "P6", 6, 4, (1 << bits) - 1);
+    EXPECT_EQ(bytes_of(read_bytes(file)).substr(0, header.size()), header);
+    const imageio::Image back = imageio::read_image(file);
+    EXPECT_EQ(back.bits_per_sample, bits);
+    expect_same_pixels(original, back);
+  }
+}
+
+TEST_F(ImageIoTest, Pnm12BitMaxval) {
+  // maxval 4095 takes two bytes per sample; 4095 is 0f ff, 2048 is 08 00.
+  const std::string file = path("twelve.pgm");
+  write_bytes(file, pnm_header("P5", 3, 1, 4095) + std::string("\x0f\xff\x00\x00\x08\x00", 6));
+  const imageio::Image image = imageio::read_image(file);
+  EXPECT_EQ(image.bits_per_sample, 12);
+  EXPECT_EQ(image.pixels, (std::vector<float>{4095, 0, 2048}));
+
+  write_bytes(file, pnm_header("P5", 3, 1, 4095) + std::string("\x0f\xff\x10\x00\x08\x00", 6));
+  EXPECT_NE(expect_io_error(file, [&] { imageio::read_image(file); }).find("above maxval 4095"), std::string::npos);
+}
+
+TEST_F(ImageIoTest, PnmMaxvalThatIsNotAPowerOfTwoMinusOne) {
+  // Samples keep their values; bits_per_sample is what maxval needs.
+  const std::string file = path("odd.pgm");
+  write_bytes(file, pnm_header("P5", 2, 1, 1000) + std::string("\x03\xe8\x00\x07", 4));
+  imageio::Image image = imageio::read_image(file);
+  EXPECT_EQ(image.bits_per_sample, 10);
+  EXPECT_EQ(image.pixels, (std::vector<float>{1000, 7}));
+
+  write_bytes(file, pnm_header("P5", 2, 1, 100) + std::string("\x64\x00", 2));
+  image = imageio::read_image(file);
+  EXPECT_EQ(image.bits_per_sample, 7);
+  EXPECT_EQ(image.pixels, (std::vector<float>{100, 0}));
+
+  // Written back, the file states the full range of those bits.
+  imageio::write_image(file, image);
+  EXPECT_EQ(bytes_of(read_bytes(file)), pnm_header("P5", 2, 1, 127) + std::string("\x64\x00", 2));
+}
+
+TEST_F(ImageIoTest, PlainPnmWithComments) {
+  const std::string grey = path("plain.pgm");
+  write_bytes(grey,
+              "P2# comment right after the magic\n"
+              "# a full-line comment\n"
+              "3#comment after the width\n"
+              "\t 2\r\n"
+              "# between height and maxval\n"
+              "65535 # after maxval\n"
+              "0 1 65535\n"
+              "256\t255 # inside the raster, as libnetpbm allows\n"
+              "00012\n");
+  imageio::Image image = imageio::read_image(grey);
+  EXPECT_EQ(image.width, 3);
+  EXPECT_EQ(image.height, 2);
+  EXPECT_EQ(image.channels, 1);
+  EXPECT_EQ(image.bits_per_sample, 16);
+  EXPECT_EQ(image.pixels, (std::vector<float>{0, 1, 65535, 256, 255, 12}));
+
+  const std::string rgb = path("plain.ppm");
+  write_bytes(rgb, "P3\n# RGB\n2 1 # size\n255\n255 0 1\n# second pixel\n2 3 4");
+  image = imageio::read_image(rgb);
+  EXPECT_EQ(image.channels, 3);
+  EXPECT_EQ(image.bits_per_sample, 8);
+  EXPECT_EQ(image.pixels, (std::vector<float>{255, 0, 1, 2, 3, 4}));
+}
+
+TEST_F(ImageIoTest, RawPnmHeaderComments) {
+  // A comment directly after maxval ends the header with its line break.
+  const std::string file = path("comment.ppm");
+  write_bytes(file, "P6 #c\n1#c\n1\n#c\n255#c\n\x01\x02\x0a");
+  const imageio::Image image = imageio::read_image(file);
+  EXPECT_EQ(image.pixels, (std::vector<float>{1, 2, 10}));
+}
+
+TEST_F(ImageIoTest, PnmBitmaps) {
+  // 10x2 with 1 = black; each P4 row takes 2 bytes, the last 6 bits of which
+  // are padding (set here, and ignored).
+  const std::vector<int> bits = {1, 0, 0, 0, 0, 0, 0, 1, 1, 0,  //
+                                 0, 1, 1, 1, 1, 1, 1, 0, 0, 1};
+  std::vector<float> expected;
+  for (int bit : bits) expected.push_back(float(1 - bit));
+
+  const std::string raw = path("raw.pbm");
+  write_bytes(raw, "P4\n# bitmap\n10 2\n" + std::string("\x81\xbf\x7e\x7f", 4));
+  imageio::Image image = imageio::read_image(raw);
+  EXPECT_EQ(image.width, 10);
+  EXPECT_EQ(image.height, 2);
+  EXPECT_EQ(image.channels, 1);
+  EXPECT_EQ(image.bits_per_sample, 1);
+  EXPECT_EQ(image.pixels, expected);
+
+  // Plain bitmaps may run the bits together or separate them.
+  const std::string plain = path("plain.pbm");
+  write_bytes(plain, "P1\n10 2\n1000000110\n0 1 1 1 1 1 1 0 0 # end\n1\n");
+  image = imageio::read_image(plain);
+  EXPECT_EQ(image.bits_per_sample, 1);
+  EXPECT_EQ(image.pixels, expected);
+
+  // A 1-bit image is written as a PGM with maxval 1 and reads back the same.
+  imageio::write_image(plain, image);
+  std::string samples;
+  for (float v : expected) samples += char(v);
+  EXPECT_EQ(bytes_of(read_bytes(plain)), pnm_header("P5", 10, 2, 1) + samples);
+  expect_same_pixels(image, imageio::read_image(plain));
+}
+
+TEST_F(ImageIoTest, PnmReadsOnlyTheFirstImage) {
+  const std::string file = path("two.pgm");
+  write_bytes(file, pnm_header("P5", 2, 1, 255) + "\x05\x06" + pnm_header("P5", 1, 1, 255) + "\x07");
+  EXPECT_EQ(imageio::read_image(file).pixels, (std::vector<float>{5, 6}));
+  write_bytes(file, "P2 2 1 255 5 6 whatever follows");
+  EXPECT_EQ(imageio::read_image(file).pixels, (std::vector<float>{5, 6}));
+}
+
+TEST_F(ImageIoTest, PnmExtensionIsCaseInsensitive) {
+  for (const std::string name : {"a.PGM", "b.Ppm", "c.pNm", "d.PBM"}) {
+    SCOPED_TRACE(name);
+    const imageio::Image original = pnm_image(3, 2, 1, 16);
+    const std::string file = path(name);
+    imageio::write_image(file, original);
+    EXPECT_EQ(bytes_of(read_bytes(file)).substr(0, 3), "P5\n");
+    expect_same_pixels(original, imageio::read_image(file));
+  }
+}
+
+TEST_F(ImageIoTest, PnmUnderAnotherExtensionIsReadExactly) {
+  // OpenImageIO recognises the content; our reader then takes over, so the
+  // 16-bit samples are not rescaled.
+  const std::string file = path("sixteen.img");
+  write_bytes(file, pnm_header("P5", 3, 1, 65535) + std::string("\xff\xff\x00\x01\xff\xfe", 6));
+  const imageio::Image image = imageio::read_image(file);
+  EXPECT_EQ(image.bits_per_sample, 16);
+  EXPECT_EQ(image.pixels, (std::vector<float>{65535, 1, 65534}));
+}
+
+TEST_F(ImageIoTest, MalformedPnmIsRejected) {
+  const std::string raw4 = "\x01\x02\x03\x04";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"empty", ""},
+      {"only_p", "P"},
+      {"bad_magic_pam", "P7\n2 2\n255\n" + raw4},
+      {"bad_magic_zero", "P0\n2 2\n255\n" + raw4},
+      {"bad_magic_pfm", "Pf\n2 2\n-1.0\n" + raw4},
+      {"bad_magic_lower", "p5\n2 2\n255\n" + raw4},
+      {"garbage_after_magic", "P5x\n2 2\n255\n" + raw4},
+      {"digit_after_magic", "P52 2\n255\n" + raw4},
+      {"missing_width", "P5\n"},
+      {"missing_height", "P5\n2"},
+      {"missing_height_comment", "P5\n2 # 2 255\n"},
+      {"missing_maxval", "P5\n2 2"},
+      {"zero_width", "P5\n0 2\n255\n" + raw4},
+      {"zero_height", "P2\n2 0\n255\n1 2 3 4"},
+      {"negative_width", "P5\n-2 2\n255\n" + raw4},
+      {"negative_height", "P6\n2 -2\n255\n" + raw4},
+      {"plus_width", "P5\n+2 2\n255\n" + raw4},
+      {"non_numeric_width", "P5\nabc 2\n255\n" + raw4},
+      {"width_with_junk", "P5\n2x 2\n255\n" + raw4},
+      {"width_overflow", "P5\n99999999999999999999999 2\n255\n" + raw4},
+      {"width_above_int", "P5\n2147483648 1\n255\n" + raw4},
+      {"huge_dimensions", "P6\n100000000 100000000\n255\n" + raw4},
+      {"too_many_samples", "P5\n65536 32769\n255\n" + raw4},
+      {"too_many_rgb_samples", "P6\n32768 21846\n255\n" + raw4},
+      {"too_many_bits", "P4\n65536 32769\n" + raw4},
+      {"plain_huge_for_its_size", "P2\n40000 40000\n255\n1 2 3 4"},
+      {"plain_bitmap_huge_for_its_size", "P1\n40000 40000\n0101"},
+      {"maxval_zero", "P5\n2 2\n0\n" + raw4},
+      {"maxval_too_large", "P5\n2 2\n65536\n" + raw4 + raw4},
+      {"maxval_negative", "P5\n2 2\n-1\n" + raw4},
+      {"maxval_text", "P5\n2 2\nff\n" + raw4},
+      {"header_only", "P5\n2 2\n255"},
+      {"header_comment_only", "P5\n2 2\n255#"},
+      {"no_data", "P5\n2 2\n255\n"},
+      {"truncated_data", "P5\n2 2\n255\n" + raw4.substr(0, 3)},
+      {"truncated_rgb", "P6\n2 2\n255\n" + raw4 + raw4},
+      {"truncated_16bit", "P5\n2 2\n65535\n" + raw4 + raw4.substr(0, 3)},
+      {"truncated_bitmap", "P4\n9 2\n" + raw4.substr(0, 3)},
+      {"raw_sample_above_maxval", "P5\n2 2\n100\n\x01\x65\x02\x03"},
+      {"raw_16bit_above_maxval", "P5\n1 1\n1000\n\x03\xe9"},
+      {"plain_sample_above_maxval", "P2\n2 2\n15\n1 2 16 4"},
+      {"plain_sample_huge", "P2\n2 2\n15\n1 2 99999999999999999999999 4"},
+      {"plain_sample_negative", "P2\n2 2\n15\n1 2 -3 4"},
+      {"plain_sample_junk", "P3\n1 1\n255\n1 2x 3"},
+      {"plain_truncated", "P2\n3 2\n255\n1 2 3 4 5"},
+      {"plain_truncated_comment", "P2\n2 2\n255\n1 2 3 # 4"},
+      {"plain_rgb_truncated", "P3\n2 1\n255\n1 2 3 4 5"},
+      {"plain_bitmap_bad_digit", "P1\n2 2\n0 1 2 0"},
+      {"plain_bitmap_truncated", "P1\n3 2\n01010"},
+  };
+  for (const auto& [name, bytes] : cases) {
+    SCOPED_TRACE(name);
+    const std::string file = path(name + ".pgm");
+    write_bytes(file, bytes);
+    expect_io_error(file, [&] { imageio::read_pnm(file); });
+    expect_io_error(file, [&] { imageio::read_image(file); });
+    // The parser itself, as the fuzzer calls it.
+    const std::vector<std::uint8_t> raw(bytes.begin(), bytes.end());
+    expect_io_error("mem", [&] { imageio::parse_pnm(raw, "mem"); });
+  }
+}
+
+TEST_F(ImageIoTest, PnmErrorsSayWhatIsWrong) {
+  const std::string file = path("bad.pgm");
+  const auto message_for = [&](const std::string& bytes) {
+    write_bytes(file, bytes);
+    return expect_io_error(file, [&] { imageio::read_image(file); });
+  };
+  EXPECT_EQ(message_for("P7\n"), file + ": not a PBM/PGM/PPM file (bad magic, expected \"P1\" to \"P6\")");
+  EXPECT_EQ(message_for("P5\n-3 2\n255\n"), file + ": width must be positive, got \"-3\"");
+  EXPECT_EQ(message_for("P5\n3 0\n255\n"), file + ": height must be positive, got 0");
+  EXPECT_EQ(message_for("P5\n3 2\n70000\n"), file + ": maxval must be 1..65535, got 70000");
+  EXPECT_EQ(message_for("P5\n3 2\n255\n\x01"), file + ": truncated pixel data: expected 6 bytes, found 1");
+  EXPECT_EQ(message_for("P2\n3 2\n255\n1 2 3 4 5 # six?\n"),
+            file + ": truncated pixel data: expected 6 samples, found 5");
+  EXPECT_EQ(message_for("P2\n3 2\n255\n1 2 3 4 5"),
+            file + ": truncated pixel data: 6 samples need at least 12 bytes, found 10");
+  EXPECT_EQ(message_for("P6\n2 1\n200\n\x01\x02\x03\x04\xc9\x06"),
+            file + ": sample at x=1, y=0, channel 1 is 201, above maxval 200");
+  EXPECT_NE(message_for("P5\n100000 100000\n255\n").find("too large"), std::string::npos);
+  EXPECT_NE(message_for("P2\n40000 40000\n255\n1").find("truncated"), std::string::npos);
+}
+
+TEST_F(ImageIoTest, ReadGreyscaleRejectsPpm) {
+  const std::string rgb = path("rgb.ppm");
+  imageio::write_image(rgb, pnm_image(4, 4, 3, 16));
+  EXPECT_EQ(expect_io_error(rgb, [&] { imageio::read_greyscale(rgb); }),
+            rgb + ": expected a greyscale image, found 3 channels");
+  const std::string grey = path("grey.pgm");
+  imageio::write_image(grey, pnm_image(4, 4, 1, 16));
+  EXPECT_EQ(imageio::read_greyscale(grey).bits_per_sample, 16);
+}
+
+TEST_F(ImageIoTest, PnmWriteRejectsWhatItCannotStore) {
+  imageio::Image out_of_range = pnm_image(3, 3, 1, 12);
+  out_of_range.pixels[4] = 4096;
+  imageio::Image fraction = pnm_image(3, 3, 3, 8);
+  fraction.pixels[2] = 1.5f;
+  imageio::Image too_deep = pnm_image(3, 3, 1, 16);
+  too_deep.bits_per_sample = 17;
+  imageio::Image wrong_size = pnm_image(3, 3, 1, 8);
+  wrong_size.pixels.pop_back();
+  const std::vector<imageio::Image> images = {pnm_image(3, 3, 2, 8),
+                                              pnm_image(3, 3, 4, 16),
+                                              integer_image(3, 3, 1, 8, true),
+                                              float_image(3, 3, 1),
+                                              out_of_range,
+                                              fraction,
+                                              too_deep,
+                                              wrong_size};
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    SCOPED_TRACE(i);
+    for (const std::string name : {"bad.pgm", "bad.ppm"}) {
+      const std::string file = path(name);
+      expect_io_error(file, [&] { imageio::write_image(file, images[i]); });
+      expect_io_error(file, [&] { imageio::write_pnm(file, images[i]); });
+    }
+  }
+  EXPECT_TRUE(files_in_dir().empty());
+}
+
+TEST_F(ImageIoTest, PnmWriteIsAtomic) {
+  const std::string file = path("keep.pgm");
+  write_bytes(file, "previous contents");
+  expect_io_error(file, [&] { imageio::write_image(file, integer_image(4, 4, 1, 16, true)); });
+  EXPECT_EQ(bytes_of(read_bytes(file)), "previous contents");
+  EXPECT_EQ(files_in_dir(), std::vector<std::string>{"keep.pgm"});
+
+  const imageio::Image image = pnm_image(4, 4, 1, 16);
+  imageio::write_image(file, image);
+  expect_same_pixels(image, imageio::read_image(file));
+  EXPECT_EQ(files_in_dir(), std::vector<std::string>{"keep.pgm"});
+
+  const std::string missing = path("no/such/dir/out.ppm");
+  expect_io_error(missing, [&] { imageio::write_image(missing, pnm_image(2, 2, 3, 8)); });
+  EXPECT_EQ(files_in_dir(), std::vector<std::string>{"keep.pgm"});
+}
+
 // ---------------------------------------------------------------- OpenImageIO
 
 TEST_F(ImageIoTest, Png8BitRoundTripIsExact) {
@@ -333,7 +671,7 @@ TEST_F(ImageIoTest, ReadGreyscaleAcceptsOnlyOneChannel) {
 }
 
 TEST_F(ImageIoTest, MissingFileNamesThePath) {
-  for (const std::string name : {"missing.png", "missing.pfm", "missing.tif"}) {
+  for (const std::string name : {"missing.png", "missing.pfm", "missing.tif", "missing.pgm"}) {
     const std::string file = path(name);
     expect_io_error(file, [&] { imageio::read_image(file); });
   }

@@ -8,4 +8,8 @@ namespace imageio::detail {
 // handled by our own reader/writer rather than OpenImageIO.
 bool has_pfm_extension(const std::string& path);
 
+// True for ".pbm", ".pgm", ".ppm" and ".pnm" in any letter case; Netpbm files
+// are handled by our own reader/writer too (see imageio/pnm.h for why).
+bool has_pnm_extension(const std::string& path);
+
 }  // namespace imageio::detail

@@ -1,4 +1,5 @@
-// Reading through OpenImageIO, keeping each file's native sample type.
+// Reading through OpenImageIO, keeping each file's native sample type; PFM and
+// PNM go to our own readers.
 
 #include <OpenImageIO/imageio.h>
 
@@ -9,6 +10,7 @@
 #include "file_extension.h"
 #include "image_checks.h"
 #include "imageio/pfm.h"
+#include "imageio/pnm.h"
 #include "imageio/read.h"
 #include "oiio_messages.h"
 
@@ -93,13 +95,14 @@ Image read_with_oiio(const std::string& path) {
                             std::to_string(detail::kMaxSamples));
   }
   const SampleKind kind = sample_kind(path, spec);
-  // OpenImageIO 2.4 rescales 16-bit PGM/PPM samples through float and gets
-  // the top of the range wrong (65535 reads back as 65534). Better to refuse
-  // than to hand the codec silently altered values.
-  if (std::string_view(in->format_name()) == "pnm" && kind.bits == 16) {
-    throw IoError(path,
-                  "16-bit PGM/PPM files are not read exactly by this OpenImageIO "
-                  "version; convert the image to PNG or TIFF");
+  // A Netpbm file under another extension. OpenImageIO 2.4 rescales 16-bit
+  // PGM/PPM samples through float and gets the top of the range wrong (65535
+  // reads back as 65534), so our own reader takes over; it does for 8-bit
+  // files as well, so that a PNM reads the same whatever its name. (OIIO's
+  // "pnm" also covers PFM, which it reports as float: that stays here.)
+  if (std::string_view(in->format_name()) == "pnm" && !kind.is_float) {
+    in->close();
+    return read_pnm(path);
   }
 
   Image image;
@@ -128,6 +131,7 @@ Image read_with_oiio(const std::string& path) {
 
 Image read_image(const std::string& path) {
   if (detail::has_pfm_extension(path)) return read_pfm(path);
+  if (detail::has_pnm_extension(path)) return read_pnm(path);
   return read_with_oiio(path);
 }
 

@@ -1,4 +1,5 @@
-// Writing through OpenImageIO without changing any sample value.
+// Writing through OpenImageIO without changing any sample value; PFM and PNM
+// are handed to our own writers.
 
 #include <OpenImageIO/imageio.h>
 
@@ -9,6 +10,7 @@
 #include "file_extension.h"
 #include "image_checks.h"
 #include "imageio/pfm.h"
+#include "imageio/pnm.h"
 #include "imageio/write.h"
 #include "oiio_messages.h"
 
@@ -93,6 +95,10 @@ void write_image(const std::string& path, const Image& image) {
   if (!image.is_float) detail::check_integer_samples(path, image);
   if (detail::has_pfm_extension(path)) {
     write_pfm(path, image);
+    return;
+  }
+  if (detail::has_pnm_extension(path)) {
+    write_pnm(path, image);
     return;
   }
   write_with_oiio(path, image);

@@ -1,33 +1,16 @@
 // File-level PFM reading and writing; parsing lives in pfm_parse.cpp.
 
 #include <bit>
-#include <cerrno>
 #include <cstdint>
-#include <cstdio>
-#include <cstring>
-#include <memory>
 #include <vector>
 
 #include "atomic_file.h"
+#include "file_bytes.h"
 #include "image_checks.h"
 #include "imageio/pfm.h"
 
 namespace imageio {
 namespace {
-
-using FilePtr = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
-
-std::vector<std::uint8_t> read_whole_file(const std::string& path) {
-  FilePtr file(std::fopen(path.c_str(), "rb"), &std::fclose);
-  if (!file) throw IoError(path, std::string("cannot open: ") + std::strerror(errno));
-  std::vector<std::uint8_t> bytes;
-  std::uint8_t chunk[1 << 16];
-  while (std::size_t n = std::fread(chunk, 1, sizeof chunk, file.get())) {
-    bytes.insert(bytes.end(), chunk, chunk + n);
-  }
-  if (std::ferror(file.get())) throw IoError(path, std::string("read error: ") + std::strerror(errno));
-  return bytes;
-}
 
 void append_le(std::vector<std::uint8_t>& out, float value) {
   const std::uint32_t word = std::bit_cast<std::uint32_t>(value);
@@ -48,22 +31,10 @@ std::vector<std::uint8_t> encode_pfm(const Image& image) {
   return out;
 }
 
-void write_bytes(const std::string& path, const std::string& file_name, const std::vector<std::uint8_t>& bytes) {
-  FilePtr file(std::fopen(file_name.c_str(), "wb"), &std::fclose);
-  if (!file) throw IoError(path, std::string("cannot open for writing: ") + std::strerror(errno));
-  if (std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
-    throw IoError(path, std::string("write error: ") + std::strerror(errno));
-  }
-  // fclose flushes; a full disk may only show up here.
-  if (std::fclose(file.release()) != 0) {
-    throw IoError(path, std::string("write error: ") + std::strerror(errno));
-  }
-}
-
 }  // namespace
 
 Image read_pfm(const std::string& path) {
-  const std::vector<std::uint8_t> bytes = read_whole_file(path);
+  const std::vector<std::uint8_t> bytes = detail::read_whole_file(path);
   return parse_pfm(bytes, path);
 }
 
@@ -73,7 +44,8 @@ void write_pfm(const std::string& path, const Image& image) {
     throw IoError(path, "PFM stores 1 or 3 channels, the image has " + std::to_string(image.channels));
   }
   const std::vector<std::uint8_t> bytes = encode_pfm(image);
-  detail::write_atomically(path, [&](const std::string& temporary) { write_bytes(path, temporary, bytes); });
+  detail::write_atomically(path,
+                           [&](const std::string& temporary) { detail::write_whole_file(path, temporary, bytes); });
 }
 
 }  // namespace imageio

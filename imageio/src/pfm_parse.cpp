@@ -12,29 +12,16 @@
 #include <limits>
 #include <string_view>
 
+#include "header_text.h"
 #include "image_checks.h"
 #include "imageio/pfm.h"
 
 namespace imageio {
 namespace {
 
-bool is_space(std::uint8_t ch) {
-  return ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r' || ch == '\v' || ch == '\f';
-}
+using detail::printable;
 
-// Header fields are short; anything longer is garbage and is cut short in
-// messages so that an error stays a readable single line.
-constexpr std::size_t kMaxTokenLength = 32;
-
-// Makes a header token safe to quote in an error message.
-std::string printable(std::string_view token) {
-  std::string out;
-  for (char ch : token.substr(0, kMaxTokenLength)) {
-    out += (ch >= 0x20 && ch < 0x7f) ? ch : '?';
-  }
-  if (token.size() > kMaxTokenLength) out += "...";
-  return out;
-}
+bool is_space(std::uint8_t ch) { return detail::is_header_space(ch); }
 
 class HeaderReader {
  public:

@@ -18,8 +18,9 @@ struct Image {
   int width = 0;
   int height = 0;
   int channels = 0;
-  // Precision of integer samples: 8 or 16 for images read from files, any
-  // of 1..16 for generated ones; 32 for float images.
+  // Precision of integer samples: 8 or 16 for images read from most files
+  // (PBM/PGM/PPM: the bit count of the file's maxval, 1..16), any of 1..16
+  // for generated ones; 32 for float images.
   int bits_per_sample = 0;
   bool is_signed = false;
   bool is_float = false;

@@ -6,9 +6,12 @@
 
 namespace imageio {
 
-// Reads any image: ".pfm" (any case) with our own PFM reader, everything else
-// through OpenImageIO. Native precision is kept: 8/16-bit integer files give
-// integer values with bits_per_sample 8/16, half/float files give is_float.
+// Reads any image: ".pfm" (any case) with our own PFM reader, ".pbm", ".pgm",
+// ".ppm" and ".pnm" (any case, or a Netpbm file under another name) with our
+// own PNM reader (imageio/pnm.h), everything else through OpenImageIO. Native
+// precision is kept: 8/16-bit integer files give integer values with
+// bits_per_sample 8/16 (PNM: the bit count of maxval, 1..16), half/float
+// files give is_float.
 // Throws IoError for missing, unreadable, truncated or unsupported files.
 Image read_image(const std::string& path);
 

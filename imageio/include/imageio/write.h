@@ -7,7 +7,10 @@
 namespace imageio {
 
 // Writes an image; the format follows the file extension (".pfm" any case
-// with our own writer, everything else through OpenImageIO).
+// with our own PFM writer; ".pbm", ".pgm", ".ppm", ".pnm" any case with our own
+// PNM writer, which stores raw P5/P6 with maxval 2^bits_per_sample - 1 and
+// refuses float and signed images (see imageio/pnm.h); everything else through
+// OpenImageIO).
 //
 // Integer images are stored as 8-bit samples when bits_per_sample <= 8 and as
 // 16-bit samples up to 16; their values must be integers in the range of

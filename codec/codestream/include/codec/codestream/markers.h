@@ -1,0 +1,20 @@
+#pragma once
+#include <cstdint>
+
+// Marker codes of the Part 1 codestream (T.800 Table A.2). Only those this encoder writes.
+namespace codec::cs::marker {
+
+inline constexpr std::uint16_t SOC = 0xFF4F;  // start of codestream
+inline constexpr std::uint16_t SIZ = 0xFF51;  // image and tile size
+inline constexpr std::uint16_t COD = 0xFF52;  // coding style default
+inline constexpr std::uint16_t COC = 0xFF53;  // coding style component
+inline constexpr std::uint16_t QCD = 0xFF5C;  // quantization default
+inline constexpr std::uint16_t QCC = 0xFF5D;  // quantization component
+inline constexpr std::uint16_t COM = 0xFF64;  // comment
+inline constexpr std::uint16_t SOT = 0xFF90;  // start of tile-part
+inline constexpr std::uint16_t SOP = 0xFF91;  // start of packet
+inline constexpr std::uint16_t EPH = 0xFF92;  // end of packet header
+inline constexpr std::uint16_t SOD = 0xFF93;  // start of data
+inline constexpr std::uint16_t EOC = 0xFFD9;  // end of codestream
+
+}  // namespace codec::cs::marker

@@ -1,0 +1,46 @@
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "codec/encoder/params.h"
+#include "codec/encoder/source_image.h"
+#include "codec/structure/tile.h"
+#include "codec/t1/block_encoder.h"
+#include "dwt/backend.h"
+#include "dwt_cpu/thread_pool.h"
+
+namespace codec {
+
+// Per component quantisation of the reversible path (T.800 E.1): no step, one exponent per
+// subband (epsilon_b = component precision + log2 gain of the band), and the guard bits.
+struct ComponentQuantization {
+  int precision = 8;   // after the component transform (RCT adds a bit to its colour differences)
+  int guard_bits = 2;
+  // Exponent of each subband in QCD order: LL, then HL, LH, HH per level from coarsest to finest.
+  std::vector<int> exponents;
+  int magnitude_bitplanes(int exponent) const { return guard_bits + exponent - 1; }  // Mb, E-2
+};
+
+// A tile after the wavelet transform and tier-1: geometry plus each code-block's codeword.
+struct CodedTile {
+  Tile tile;
+  std::vector<t1::EncodedBlock> blocks;  // indexed by CodeBlock::index
+  std::vector<int> guard_bits_needed;    // per component: the fewest guard bits its coefficients fit in
+};
+
+// The whole image's coding parameters that every tile shares.
+struct CodingPlan {
+  ImageGrid grid;
+  std::vector<ComponentSampling> sampling;
+  std::vector<CodingStyle> styles;
+  std::vector<ComponentQuantization> quantization;
+  bool rct = false;
+};
+
+CodingPlan make_plan(const SourceImage& image, const EncodeParams& params);
+
+// DC shift, component transform, DWT and tier-1 for one tile.
+CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params, int tile_index,
+                    dwt::DwtBackend& dwt, dwt_cpu::ThreadPool& pool);
+
+}  // namespace codec

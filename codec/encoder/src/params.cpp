@@ -1,0 +1,33 @@
+#include "codec/encoder/params.h"
+
+#include <string>
+
+#include "codec/structure/error.h"
+
+namespace codec {
+namespace {
+
+bool power_of_two(std::int64_t v) { return v > 0 && (v & (v - 1)) == 0; }
+
+}  // namespace
+
+void validate(const EncodeParams& p) {
+  if (!p.lossless) throw EncodeError("lossy coding is not available yet; use --lossless");
+  if (p.levels < 0 || p.levels > 32) throw EncodeError("--levels must be between 0 and 32");
+  const int w = p.codeblock_width, h = p.codeblock_height;
+  if (!power_of_two(w) || !power_of_two(h) || w < 4 || h < 4 || w > 1024 || h > 1024 || w * h > 4096)
+    throw EncodeError("code-block " + std::to_string(w) + "x" + std::to_string(h) +
+                      " is not allowed: width and height must be powers of two from 4 to 1024 with width*height <= 4096 "
+                      "(T.800 A.6.1)");
+  for (const auto& [pw, ph] : p.precincts)
+    if (!power_of_two(pw) || !power_of_two(ph) || pw > 32768 || ph > 32768)
+      throw EncodeError("precinct " + std::to_string(pw) + "x" + std::to_string(ph) +
+                        " is not allowed: sizes must be powers of two up to 32768");
+  if (p.image_x0 < 0 || p.image_y0 < 0 || p.tile_x0 < 0 || p.tile_y0 < 0)
+    throw EncodeError("image and tile origins must be non-negative");
+  if (p.tile_width < 0 || p.tile_height < 0) throw EncodeError("tile sizes must be positive");
+  if (p.guard_bits < 0 || p.guard_bits > 7) throw EncodeError("--guard-bits must be between 0 and 7");
+  if (p.threads < 0) throw EncodeError("--threads must not be negative");
+}
+
+}  // namespace codec

@@ -1,0 +1,44 @@
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "codec/t1/block_style.h"
+
+namespace codec::t1 {
+
+// The subband a code-block belongs to; it selects the zero-coding contexts (T.800 Table D.1):
+// LL and LH share them, HL uses them with horizontal and vertical swapped, HH has its own.
+enum class Orientation { LL, HL, LH, HH };
+
+struct PassInfo {
+  // Bytes of the block's codeword needed to decode up to and including this pass: a valid
+  // truncation point (a decoder reading 0xFF past it decodes every pass so far correctly).
+  // Non-decreasing from pass to pass; the last one equals data.size().
+  std::size_t length = 0;
+  // Decrease of the squared error this pass buys, on the integer coefficient grid, assuming the
+  // decoder reconstructs a significant coefficient at the middle of its remaining uncertainty
+  // interval (exactly, once every bit-plane is known).
+  double distortion_decrease = 0.0;
+  // Whether the MQ coder (or raw segment) was terminated after this pass.
+  bool terminated = false;
+};
+
+struct EncodedBlock {
+  std::vector<std::uint8_t> data;
+  int missing_msbs = 0;  // zero bit-planes for the packet header: Mb minus the bit-planes coded
+  std::vector<PassInfo> passes;
+};
+
+// Tier-1 (EBCOT) coding of one code-block, T.800 Annex D. `coefficients` holds width * height
+// quantisation indices row by row, sign and magnitude, each magnitude below
+// 2^magnitude_bitplanes (Mb, at most 31). Any width and height >= 1 are accepted (edge blocks).
+// The first pass is a cleanup pass on the most significant non-zero bit-plane, then
+// significance propagation, magnitude refinement and cleanup on each plane below: 3 * planes - 2
+// passes. An all-zero block yields no passes, no data and missing_msbs = Mb.
+// Throws std::invalid_argument for inconsistent arguments.
+EncodedBlock encode_block(std::span<const std::int32_t> coefficients, int width, int height, Orientation o,
+                          int magnitude_bitplanes, BlockStyle style);
+
+}  // namespace codec::t1

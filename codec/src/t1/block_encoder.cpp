@@ -1,0 +1,138 @@
+#include "codec/t1/block_encoder.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "coding_passes.h"
+#include "coefficient_state.h"
+#include "contexts.h"
+#include "pass_schedule.h"
+#include "raw_writer.h"
+
+namespace codec::t1 {
+
+namespace {
+
+void validate(std::span<const std::int32_t> coefficients, int width, int height, int magnitude_bitplanes) {
+  if (width < 1 || height < 1)
+    throw std::invalid_argument("code-block must be at least 1x1, got " + std::to_string(width) + "x" +
+                                std::to_string(height));
+  if (coefficients.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
+    throw std::invalid_argument("code-block of " + std::to_string(width) + "x" + std::to_string(height) + " given " +
+                                std::to_string(coefficients.size()) + " coefficients");
+  if (magnitude_bitplanes < 0 || magnitude_bitplanes > 31)
+    throw std::invalid_argument("magnitude bit-planes must be 0..31, got " + std::to_string(magnitude_bitplanes));
+}
+
+// A pass whose codeword length is only known once its segment has been terminated.
+struct PendingPass {
+  int pass;
+  bool raw;
+  MqTruncationPoint point;  // MQ passes
+  std::size_t raw_length;   // raw passes
+};
+
+// Segment bookkeeping: which coder is open, and the passes waiting for the segment's end.
+class SegmentTracker {
+ public:
+  SegmentTracker(EncodedBlock& out, const BlockStyle& style) : out_(out), style_(style), mq_(out.data), raw_(out.data) {}
+
+  MqEncoder& mq() { return mq_; }
+  RawWriter& raw() { return raw_; }
+
+  void begin_pass_if_needed(bool raw) {
+    if (open_) return;
+    open_ = true;
+    if (raw)
+      raw_.start();
+    else
+      mq_.start();
+  }
+
+  void pass_done(int pass, bool raw, bool ends_segment) {
+    PassInfo& info = out_.passes[static_cast<std::size_t>(pass)];
+    if (!ends_segment) {
+      pending_.push_back(PendingPass{pass, raw, raw ? MqTruncationPoint{} : mq_.truncation_point(),
+                                     raw ? raw_.truncation_length() : 0});
+      return;
+    }
+    if (raw)
+      raw_.terminate(style_.predictable_termination);
+    else if (style_.predictable_termination)
+      mq_.flush_predictable();
+    else
+      mq_.flush();
+    const std::size_t end = out_.data.size();
+    for (const PendingPass& p : pending_) {
+      const std::size_t length = p.raw ? p.raw_length : safe_truncation_length(out_.data, p.point, end);
+      out_.passes[static_cast<std::size_t>(p.pass)].length = std::min(length, end);
+    }
+    pending_.clear();
+    info.length = end;
+    info.terminated = true;
+    open_ = false;
+  }
+
+ private:
+  EncodedBlock& out_;
+  const BlockStyle& style_;
+  MqEncoder mq_;
+  RawWriter raw_;
+  std::vector<PendingPass> pending_;
+  bool open_ = false;
+};
+
+// D.5: the symbol 1010 in the UNIFORM context after each cleanup pass lets a decoder detect errors.
+void code_segmentation_symbol(ContextSet& cx, MqEncoder& mq) {
+  for (int bit : {1, 0, 1, 0}) mq.encode(bit, cx[kUniformContext]);
+}
+
+double code_pass(int pass, int plane, bool raw, const BlockView& v, const ZeroCodingTable& zc, ContextSet& cx,
+                 SegmentTracker& seg, const BlockStyle& style) {
+  switch (pass_kind(pass)) {
+    case PassKind::Significance:
+      return raw ? significance_pass_raw(v, plane, seg.raw()) : significance_pass(v, plane, zc, cx, seg.mq());
+    case PassKind::Refinement:
+      return raw ? refinement_pass_raw(v, plane, seg.raw()) : refinement_pass(v, plane, cx, seg.mq());
+    case PassKind::Cleanup: break;
+  }
+  const double gain = cleanup_pass(v, plane, zc, cx, seg.mq());
+  if (style.segmentation_symbols) code_segmentation_symbol(cx, seg.mq());
+  return gain;
+}
+
+}  // namespace
+
+EncodedBlock encode_block(std::span<const std::int32_t> coefficients, int width, int height, Orientation o,
+                          int magnitude_bitplanes, BlockStyle style) {
+  validate(coefficients, width, height, magnitude_bitplanes);
+  CoefficientState state(coefficients, width, height);
+  const int planes = state.bit_planes();
+  if (planes > magnitude_bitplanes)
+    throw std::invalid_argument("a coefficient magnitude needs " + std::to_string(planes) + " bit-planes, Mb is " +
+                                std::to_string(magnitude_bitplanes));
+
+  EncodedBlock out;
+  out.missing_msbs = magnitude_bitplanes - planes;
+  const int count = pass_count(planes);
+  out.passes.resize(static_cast<std::size_t>(count));
+  if (count == 0) return out;
+  out.data.reserve(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+
+  const BlockView v = state.view(style.vertically_causal);
+  const ZeroCodingTable& zc = zero_coding_table(o);
+  ContextSet cx;
+  reset_contexts(cx);
+  SegmentTracker seg(out, style);
+  for (int pass = 0; pass < count; ++pass) {
+    const bool raw = pass_is_raw(pass, style);
+    seg.begin_pass_if_needed(raw);
+    out.passes[static_cast<std::size_t>(pass)].distortion_decrease =
+        code_pass(pass, pass_plane(pass, planes), raw, v, zc, cx, seg, style);
+    seg.pass_done(pass, raw, pass_ends_segment(pass, count, style));
+    if (style.reset) reset_contexts(cx);
+  }
+  return out;
+}
+
+}  // namespace codec::t1

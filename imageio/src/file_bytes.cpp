@@ -1,0 +1,41 @@
+#include "file_bytes.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
+#include "imageio/error.h"
+
+namespace imageio::detail {
+namespace {
+
+using FilePtr = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
+
+}  // namespace
+
+std::vector<std::uint8_t> read_whole_file(const std::string& path) {
+  FilePtr file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!file) throw IoError(path, std::string("cannot open: ") + std::strerror(errno));
+  std::vector<std::uint8_t> bytes;
+  std::uint8_t chunk[1 << 16];
+  while (std::size_t n = std::fread(chunk, 1, sizeof chunk, file.get())) {
+    bytes.insert(bytes.end(), chunk, chunk + n);
+  }
+  if (std::ferror(file.get())) throw IoError(path, std::string("read error: ") + std::strerror(errno));
+  return bytes;
+}
+
+void write_whole_file(const std::string& path, const std::string& file_name, std::span<const std::uint8_t> bytes) {
+  FilePtr file(std::fopen(file_name.c_str(), "wb"), &std::fclose);
+  if (!file) throw IoError(path, std::string("cannot open for writing: ") + std::strerror(errno));
+  if (std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
+    throw IoError(path, std::string("write error: ") + std::strerror(errno));
+  }
+  // fclose flushes; a full disk may only show up here.
+  if (std::fclose(file.release()) != 0) {
+    throw IoError(path, std::string("write error: ") + std::strerror(errno));
+  }
+}
+
+}  // namespace imageio::detail

@@ -1,0 +1,294 @@
+// Strict Netpbm (PBM/PGM/PPM) parser. The header is validated and the image
+// size checked against both the sample limit and the bytes actually present
+// before pixel memory is allocated, so a hostile or corrupt header can neither
+// exhaust memory nor cause reads out of bounds. This file has no dependency
+// beyond the standard library so the fuzzer can compile it on its own.
+
+#include <bit>
+#include <charconv>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string_view>
+
+#include "header_text.h"
+#include "image_checks.h"
+#include "imageio/pnm.h"
+
+namespace imageio {
+namespace {
+
+using detail::is_header_space;
+using detail::printable;
+
+constexpr std::uint64_t kMaxMaxval = 65535;
+
+bool is_digit(std::uint8_t ch) { return ch >= '0' && ch <= '9'; }
+
+// The variants, named by the digit of their magic number.
+struct Format {
+  char digit = 0;
+  int channels = 0;
+  bool bitmap = false;  // P1/P4: no maxval, one bit per pixel
+  bool plain = false;   // P1/P2/P3: ASCII raster
+};
+
+// Reads the file front to back: header fields, then the raster. Every
+// access goes through pos_ < bytes_.size() checks.
+class PnmReader {
+ public:
+  PnmReader(std::span<const std::uint8_t> bytes, const std::string& name) : bytes_(bytes), name_(name) {}
+
+  [[noreturn]] void fail(const std::string& problem) const { throw IoError(name_, problem); }
+
+  Format read_magic() {
+    if (bytes_.size() < 2 || bytes_[0] != 'P' || bytes_[1] < '1' || bytes_[1] > '6') {
+      fail("not a PBM/PGM/PPM file (bad magic, expected \"P1\" to \"P6\")");
+    }
+    Format format;
+    format.digit = char(bytes_[1]);
+    format.channels = (format.digit == '3' || format.digit == '6') ? 3 : 1;
+    format.bitmap = format.digit == '1' || format.digit == '4';
+    format.plain = format.digit <= '3';
+    pos_ = 2;
+    // Without this, "P5x ..." or "P52 2 ..." would be accepted.
+    if (pos_ >= bytes_.size() || !(is_header_space(bytes_[pos_]) || bytes_[pos_] == '#')) {
+      fail("not a PBM/PGM/PPM file (unexpected data after the magic number)");
+    }
+    return format;
+  }
+
+  // Reads a dimension: a positive decimal integer that fits in an int.
+  int read_dimension(const char* what) {
+    const std::uint64_t value = read_unsigned(what, "positive");
+    if (value == 0) fail(std::string(what) + " must be positive, got 0");
+    if (value > std::uint64_t(std::numeric_limits<int>::max())) fail(std::string(what) + " is too large");
+    return int(value);
+  }
+
+  int read_maxval() {
+    const std::uint64_t value = read_unsigned("maxval", "1..65535");
+    if (value == 0 || value > kMaxMaxval) fail("maxval must be 1..65535, got " + printable(last_token_));
+    return int(value);
+  }
+
+  // A raw raster starts after exactly one whitespace character following the
+  // last header field, or after the line break ending a comment that
+  // directly follows it (libnetpbm reads the delimiter through its comment
+  // skipping). Returns the offset where the raster starts.
+  std::size_t end_of_raw_header() {
+    if (pos_ >= bytes_.size()) fail("truncated header (no pixel data)");
+    if (bytes_[pos_] == '#') {
+      skip_comment();
+      if (pos_ >= bytes_.size()) fail("truncated header (no pixel data)");
+    }
+    // take_token stopped at whitespace or '#', and a comment ends at a line
+    // break, so this is the single delimiting whitespace character.
+    return pos_ + 1;
+  }
+
+  // Bytes from the current position to the end; for the plain formats'
+  // size check before allocating.
+  std::size_t remaining() const { return bytes_.size() - pos_; }
+
+  // Plain raster sample: a decimal number up to maxval. Whitespace and
+  // comments may precede it. `index` and `expected` only serve messages.
+  std::uint32_t read_plain_sample(std::size_t index, std::uint64_t expected, int maxval) {
+    skip_space_and_comments();
+    if (pos_ >= bytes_.size()) fail(truncated_samples(index, expected));
+    const std::string_view token = take_token();
+    std::uint64_t value = 0;
+    if (!parse_digits(token, value)) fail(sample_name(index) + " is not a number: \"" + printable(token) + "\"");
+    if (value > std::uint64_t(maxval)) {
+      fail(sample_name(index) + " is " + (value > kMaxMaxval ? printable(token) : std::to_string(value)) +
+           ", above maxval " + std::to_string(maxval));
+    }
+    return std::uint32_t(value);
+  }
+
+  // Plain bitmap pixel: a single '0' or '1'; whitespace between them is
+  // optional, so "0110" is four pixels.
+  int read_plain_bit(std::size_t index, std::uint64_t expected) {
+    skip_space_and_comments();
+    if (pos_ >= bytes_.size()) fail(truncated_samples(index, expected));
+    const std::uint8_t ch = bytes_[pos_++];
+    if (ch != '0' && ch != '1') {
+      fail(sample_name(index) + " is not a bitmap digit (0 or 1): \"" + printable(std::string(1, char(ch))) + "\"");
+    }
+    return ch - '0';
+  }
+
+  void set_sample_naming(int width, int channels) {
+    width_ = width;
+    channels_ = channels;
+  }
+
+  // "sample at x=3, y=0, channel 1" for messages.
+  std::string sample_name(std::size_t index) const {
+    const std::size_t pixel = index / std::size_t(channels_);
+    std::string out = "sample at x=" + std::to_string(pixel % std::size_t(width_)) +
+                      ", y=" + std::to_string(pixel / std::size_t(width_));
+    if (channels_ > 1) out += ", channel " + std::to_string(index % std::size_t(channels_));
+    return out;
+  }
+
+ private:
+  void skip_comment() {
+    while (pos_ < bytes_.size() && bytes_[pos_] != '\n' && bytes_[pos_] != '\r') ++pos_;
+  }
+
+  void skip_space_and_comments() {
+    while (pos_ < bytes_.size()) {
+      if (is_header_space(bytes_[pos_])) {
+        ++pos_;
+      } else if (bytes_[pos_] == '#') {
+        skip_comment();
+      } else {
+        break;
+      }
+    }
+  }
+
+  // A token runs up to whitespace, a comment or the end of the data.
+  std::string_view take_token() {
+    const std::size_t start = pos_;
+    while (pos_ < bytes_.size() && !is_header_space(bytes_[pos_]) && bytes_[pos_] != '#') ++pos_;
+    return {reinterpret_cast<const char*>(bytes_.data()) + start, pos_ - start};
+  }
+
+  // Decimal digits only (Netpbm has no signs). False for anything else;
+  // a value too large for 64 bits is saturated, which every caller rejects.
+  static bool parse_digits(std::string_view token, std::uint64_t& value) {
+    if (token.empty()) return false;
+    for (char ch : token) {
+      if (!is_digit(std::uint8_t(ch))) return false;
+    }
+    const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+    if (ec == std::errc::result_out_of_range) value = std::numeric_limits<std::uint64_t>::max();
+    return true;
+  }
+
+  // `requirement` completes "WHAT must be ..." when the field is negative.
+  std::uint64_t read_unsigned(const char* what, const char* requirement) {
+    skip_space_and_comments();
+    const std::string_view token = take_token();
+    last_token_ = token;
+    if (token.empty()) fail(std::string("truncated header (missing ") + what + ")");
+    std::uint64_t value = 0;
+    if (!parse_digits(token, value)) {
+      if (token[0] == '-') {
+        fail(std::string(what) + " must be " + requirement + ", got \"" + printable(token) + "\"");
+      }
+      fail(std::string("invalid ") + what + " \"" + printable(token) + "\"");
+    }
+    return value;
+  }
+
+  static std::string truncated_samples(std::size_t index, std::uint64_t expected) {
+    return "truncated pixel data: expected " + std::to_string(expected) + " samples, found " + std::to_string(index);
+  }
+
+  std::span<const std::uint8_t> bytes_;
+  const std::string& name_;
+  std::size_t pos_ = 0;
+  std::string_view last_token_;  // the last header field read, for messages
+  int width_ = 1;
+  int channels_ = 1;
+};
+
+void check_size(PnmReader& reader, const Image& image, std::uint64_t samples) {
+  if (samples > detail::kMaxSamples) {
+    reader.fail("image too large: " + std::to_string(image.width) + "x" + std::to_string(image.height) + " with " +
+                std::to_string(image.channels) + (image.channels == 1 ? " channel" : " channels") +
+                " exceeds the limit of " + std::to_string(detail::kMaxSamples) + " samples");
+  }
+}
+
+void check_available(PnmReader& reader, std::uint64_t needed, std::uint64_t available) {
+  if (available < needed) {
+    reader.fail("truncated pixel data: expected " + std::to_string(needed) + " bytes, found " +
+                std::to_string(available));
+  }
+}
+
+void read_plain(PnmReader& reader, const Format& format, int maxval, Image& image) {
+  const std::uint64_t samples = image.pixels.size();
+  for (std::size_t i = 0; i < samples; ++i) {
+    image.pixels[i] = format.bitmap ? float(1 - reader.read_plain_bit(i, samples))
+                                    : float(reader.read_plain_sample(i, samples, maxval));
+  }
+}
+
+void read_raw_bitmap(const std::uint8_t* src, Image& image) {
+  const std::size_t row_bytes = (std::size_t(image.width) + 7) / 8;
+  for (int y = 0; y < image.height; ++y, src += row_bytes) {
+    float* dst = image.pixels.data() + std::size_t(y) * std::size_t(image.width);
+    for (int x = 0; x < image.width; ++x) {
+      const int bit = (src[x / 8] >> (7 - x % 8)) & 1;
+      dst[x] = float(1 - bit);
+    }
+  }
+}
+
+void read_raw(PnmReader& reader, const std::uint8_t* src, int maxval, Image& image) {
+  const bool wide = maxval > 255;
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    unsigned value = src[0];
+    if (wide) value = (value << 8) | src[1];  // big-endian
+    src += wide ? 2 : 1;
+    if (value > unsigned(maxval)) {
+      reader.fail(reader.sample_name(i) + " is " + std::to_string(value) + ", above maxval " + std::to_string(maxval));
+    }
+    image.pixels[i] = float(value);
+  }
+}
+
+}  // namespace
+
+Image parse_pnm(std::span<const std::uint8_t> bytes, const std::string& name_for_errors) {
+  PnmReader reader(bytes, name_for_errors);
+  const Format format = reader.read_magic();
+  Image image;
+  image.channels = format.channels;
+  image.width = reader.read_dimension("width");
+  image.height = reader.read_dimension("height");
+  const int maxval = format.bitmap ? 1 : reader.read_maxval();
+  image.bits_per_sample = std::bit_width(unsigned(maxval));
+  reader.set_sample_naming(image.width, image.channels);
+
+  // Each dimension is below 2^31, so this product cannot overflow 64 bits.
+  const std::uint64_t samples =
+      std::uint64_t(image.width) * std::uint64_t(image.height) * std::uint64_t(image.channels);
+  check_size(reader, image, samples);
+
+  if (format.plain) {
+    // What is left starts with the whitespace ending the header; after it
+    // each sample takes at least one character (bitmaps) or a digit and a
+    // separator (the last one excepted). Checking this first keeps a tiny
+    // file from making us allocate for a huge declared size.
+    const std::uint64_t min_bytes = format.bitmap ? samples + 1 : 2 * samples;
+    if (reader.remaining() < min_bytes) {
+      reader.fail("truncated pixel data: " + std::to_string(samples) + " samples need at least " +
+                  std::to_string(min_bytes) + " bytes, found " + std::to_string(reader.remaining()));
+    }
+    image.pixels.resize(samples);
+    read_plain(reader, format, maxval, image);
+    return image;
+  }
+
+  const std::size_t data_start = reader.end_of_raw_header();
+  const std::uint64_t available = bytes.size() - data_start;
+  const std::uint64_t needed = format.bitmap ? (std::uint64_t(image.width) + 7) / 8 * std::uint64_t(image.height)
+                                             : samples * (maxval > 255 ? 2 : 1);
+  check_available(reader, needed, available);
+  // Anything after the raster is left alone: it may be the next image.
+  image.pixels.resize(samples);
+  if (format.bitmap) {
+    read_raw_bitmap(bytes.data() + data_start, image);
+  } else {
+    read_raw(reader, bytes.data() + data_start, maxval, image);
+  }
+  return image;
+}
+
+}  // namespace imageio

@@ -1,0 +1,424 @@
+// Tier-1 block coder (T.800 Annexes C and D): the MQ coder against the published ITU-T T.88
+// Annex H.2 test sequence and an independent MQ decoder; whole code-blocks against an independent
+// tier-1 decoder (t1_reference_decoder.h) for every orientation, many sizes, coefficient
+// distributions and every code-block style switch; every pass's truncation length and distortion
+// figure checked by decoding the truncated codeword.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "codec/t1/block_encoder.h"
+#include "codec/t1/block_style.h"
+#include "codec/t1/mq_encoder.h"
+#include "t1_reference_decoder.h"
+
+namespace {
+
+using codec::t1::BlockStyle;
+using codec::t1::EncodedBlock;
+using codec::t1::MqContext;
+using codec::t1::MqEncoder;
+using codec::t1::Orientation;
+
+// ---------------------------------------------------------------------------------------------
+// MQ coder
+
+// ITU-T T.88 (JBIG2) Annex H.2: 256 decisions (32 bytes, MSB first) coded in a single context
+// starting at state 0, MPS 0; JBIG2's MQ coder is the one of T.800 Annex C.
+const std::vector<std::uint8_t> kT88Decisions = {0x00, 0x02, 0x00, 0x51, 0x00, 0x00, 0x00, 0xC0, 0x03, 0x52, 0x87,
+                                                 0x2A, 0xAA, 0xAA, 0xAA, 0xAA, 0x82, 0xC0, 0x20, 0x00, 0xFC, 0xD7,
+                                                 0x9E, 0xF6, 0xBF, 0x7F, 0xED, 0x90, 0x4F, 0x46, 0xA3, 0xBF};
+const std::vector<std::uint8_t> kT88Coded = {0x84, 0xC7, 0x3B, 0xFC, 0xE1, 0xA1, 0x43, 0x04, 0x02, 0x20,
+                                             0x00, 0x00, 0x41, 0x0D, 0xBB, 0x86, 0xF4, 0x31, 0x7F, 0xFF,
+                                             0x88, 0xFF, 0x37, 0x47, 0x1A, 0xDB, 0x6A, 0xDF, 0xFF, 0xAC};
+
+int t88_decision(int i) { return (kT88Decisions[static_cast<std::size_t>(i / 8)] >> (7 - i % 8)) & 1; }
+
+TEST(MqCoder, MatchesT88AnnexH2TestSequence) {
+  std::vector<std::uint8_t> out;
+  MqEncoder mq(out);
+  mq.start();
+  MqContext cx;
+  for (int i = 0; i < 256; ++i) mq.encode(t88_decision(i), cx);
+  mq.flush();
+  // T.88's flush keeps the final 0xFF of the second BYTEOUT and appends 0xAC (the 0xFFAC end
+  // marker of JBIG2); T.800's codeword drops that final 0xFF, which the decoder's 0xFF fill
+  // supplies anyway. Everything before it must agree byte for byte.
+  const std::vector<std::uint8_t> expected(kT88Coded.begin(), kT88Coded.end() - 2);
+  EXPECT_EQ(out, expected);
+
+  const std::vector<std::uint8_t>* streams[] = {&out, &kT88Coded};
+  for (const auto* stream : streams) {
+    t1ref::MqDecoder dec(*stream);
+    t1ref::RefContext rc;
+    int wrong = 0;
+    for (int i = 0; i < 256; ++i) wrong += dec.decode(rc) != t88_decision(i);
+    EXPECT_EQ(wrong, 0);
+  }
+}
+
+struct Symbol {
+  int bit;
+  int context;
+};
+
+// Decisions in several contexts with skews from fair to extreme, so that long MPS runs, carries
+// and 0xFF bytes all occur.
+std::vector<Symbol> random_symbols(std::mt19937& rng, int n, int contexts) {
+  std::vector<double> p_one(static_cast<std::size_t>(contexts));
+  for (int c = 0; c < contexts; ++c) p_one[static_cast<std::size_t>(c)] = std::pow(0.5, c % 9) * (c % 2 ? 1.0 : 0.5);
+  std::uniform_int_distribution<int> pick(0, contexts - 1);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Symbol> s(static_cast<std::size_t>(n));
+  for (auto& sym : s) {
+    sym.context = pick(rng);
+    const double p = p_one[static_cast<std::size_t>(sym.context)];
+    sym.bit = u(rng) < (sym.context % 3 == 0 ? 1.0 - p : p) ? 1 : 0;
+  }
+  return s;
+}
+
+int count_decode_errors(std::span<const std::uint8_t> data, const std::vector<Symbol>& symbols, std::size_t n,
+                        int contexts) {
+  t1ref::MqDecoder dec(data);
+  std::vector<t1ref::RefContext> cx(static_cast<std::size_t>(contexts));
+  int wrong = 0;
+  for (std::size_t i = 0; i < n; ++i) wrong += dec.decode(cx[static_cast<std::size_t>(symbols[i].context)]) != symbols[i].bit;
+  return wrong;
+}
+
+TEST(MqCoder, RandomSequencesDecodeIndependentlyWithBothTerminations) {
+  for (int predictable = 0; predictable < 2; ++predictable)
+    for (std::uint32_t seed = 1; seed <= 12; ++seed) {
+      std::mt19937 rng(seed);
+      const int contexts = 1 + static_cast<int>(seed % 7) * 3;
+      const auto symbols = random_symbols(rng, 1 + static_cast<int>(seed * seed * 731 % 40000), contexts);
+      std::vector<std::uint8_t> out;
+      MqEncoder mq(out);
+      mq.start();
+      std::vector<MqContext> cx(static_cast<std::size_t>(contexts));
+      for (const Symbol& s : symbols) mq.encode(s.bit, cx[static_cast<std::size_t>(s.context)]);
+      predictable ? mq.flush_predictable() : mq.flush();
+      ASSERT_FALSE(!out.empty() && out.back() == 0xFF);
+      EXPECT_EQ(count_decode_errors(out, symbols, symbols.size(), contexts), 0)
+          << "seed " << seed << " predictable " << predictable;
+    }
+}
+
+// The truncation length reported for a point inside a segment must let a decoder that sees only
+// that many bytes decode every symbol before the point.
+TEST(MqCoder, TruncationLengthsAreSafe) {
+  for (std::uint32_t seed = 100; seed < 130; ++seed) {
+    std::mt19937 rng(seed);
+    const int contexts = 1 + static_cast<int>(seed % 5) * 4;
+    const auto symbols = random_symbols(rng, 6000, contexts);
+    std::vector<std::uint8_t> out;
+    MqEncoder mq(out);
+    mq.start();
+    std::vector<MqContext> cx(static_cast<std::size_t>(contexts));
+    std::vector<std::pair<std::size_t, codec::t1::MqTruncationPoint>> points;
+    for (std::size_t i = 0; i < symbols.size(); ++i) {
+      mq.encode(symbols[i].bit, cx[static_cast<std::size_t>(symbols[i].context)]);
+      if (i % 37 == 0 || i < 40) points.emplace_back(i + 1, mq.truncation_point());
+    }
+    seed % 2 ? mq.flush_predictable() : mq.flush();
+    std::size_t previous = 0;
+    for (const auto& [n, point] : points) {
+      const std::size_t length = codec::t1::safe_truncation_length(out, point, out.size());
+      ASSERT_LE(length, out.size());
+      ASSERT_GE(length, previous);
+      previous = length;
+      const std::span<const std::uint8_t> cut(out.data(), length);
+      ASSERT_EQ(count_decode_errors(cut, symbols, n, contexts), 0) << "seed " << seed << " after " << n << " symbols, "
+                                                                   << length << " of " << out.size() << " bytes";
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Code-block style
+
+TEST(BlockStyleTest, SpcodRoundTrip) {
+  for (int bits = 0; bits < 64; ++bits) {
+    const auto b = static_cast<std::uint8_t>(bits);
+    const BlockStyle s = BlockStyle::from_spcod(b);
+    EXPECT_EQ(s.to_spcod(), b);
+    EXPECT_EQ(BlockStyle::from_spcod(static_cast<std::uint8_t>(b | 0xC0)), s);  // bits 6, 7 are not tier-1 switches
+  }
+  EXPECT_TRUE(BlockStyle::from_spcod(0x01).bypass);
+  EXPECT_TRUE(BlockStyle::from_spcod(0x02).reset);
+  EXPECT_TRUE(BlockStyle::from_spcod(0x04).terminate_each_pass);
+  EXPECT_TRUE(BlockStyle::from_spcod(0x08).vertically_causal);
+  EXPECT_TRUE(BlockStyle::from_spcod(0x10).predictable_termination);
+  EXPECT_TRUE(BlockStyle::from_spcod(0x20).segmentation_symbols);
+  EXPECT_EQ(BlockStyle{}.to_spcod(), 0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Code-blocks against the reference decoder
+
+enum class Dist { Zero, Single, Sparse, Dense, Laplacian, Large, Huge };
+
+const char* dist_name(Dist d) {
+  switch (d) {
+    case Dist::Zero: return "zero";
+    case Dist::Single: return "single";
+    case Dist::Sparse: return "sparse";
+    case Dist::Dense: return "dense";
+    case Dist::Laplacian: return "laplacian";
+    case Dist::Large: return "large";
+    case Dist::Huge: return "huge";
+  }
+  return "?";
+}
+
+struct Block {
+  std::vector<std::int32_t> c;
+  int mb;  // Mb given to the encoder: enough planes, sometimes a few more (missing MSBs)
+};
+
+Block make_block(Dist d, int w, int h, std::mt19937& rng) {
+  const auto n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  Block b{std::vector<std::int32_t>(n, 0), 0};
+  std::uniform_int_distribution<int> coin(0, 1);
+  auto signed_value = [&](std::int64_t magnitude) {
+    return static_cast<std::int32_t>(coin(rng) ? -magnitude : magnitude);
+  };
+  auto magnitude_below = [&](std::int64_t limit) { return std::uniform_int_distribution<std::int64_t>(0, limit - 1)(rng); };
+  switch (d) {
+    case Dist::Zero: break;
+    case Dist::Single:
+      b.c[std::uniform_int_distribution<std::size_t>(0, n - 1)(rng)] = signed_value(1 + magnitude_below(4095));
+      break;
+    case Dist::Sparse:
+      for (auto& v : b.c)
+        if (std::uniform_int_distribution<int>(0, 9)(rng) == 0) v = signed_value(1 + magnitude_below(999));
+      break;
+    case Dist::Dense:
+      for (auto& v : b.c) v = signed_value(magnitude_below(256));
+      break;
+    case Dist::Laplacian: {
+      std::exponential_distribution<double> e(1.0 / 12.0);
+      for (auto& v : b.c) v = signed_value(std::min<std::int64_t>(static_cast<std::int64_t>(e(rng)), 65535));
+      break;
+    }
+    case Dist::Large:  // magnitudes up to 2^20
+      for (auto& v : b.c) v = signed_value(magnitude_below((std::int64_t{1} << 20) + 1));
+      break;
+    case Dist::Huge:  // up to 2^31 - 1, the most Mb = 31 allows
+      for (auto& v : b.c) v = signed_value(magnitude_below(std::int64_t{1} << 31));
+      b.c[0] = 2147483647;
+      break;
+  }
+  std::uint32_t any = 0;
+  for (auto v : b.c) any |= static_cast<std::uint32_t>(v < 0 ? -static_cast<std::int64_t>(v) : v);
+  const int planes = static_cast<int>(std::bit_width(any));
+  b.mb = std::min(31, planes + std::uniform_int_distribution<int>(0, 2)(rng));
+  return b;
+}
+
+t1ref::Band band_of(Orientation o) {
+  switch (o) {
+    case Orientation::LL: return t1ref::Band::LL;
+    case Orientation::HL: return t1ref::Band::HL;
+    case Orientation::LH: return t1ref::Band::LH;
+    case Orientation::HH: return t1ref::Band::HH;
+  }
+  return t1ref::Band::LL;
+}
+
+// Squared error on the integer grid, in long double: each term is exact, the sum near enough.
+long double squared_error(const std::vector<std::int32_t>& c, const std::vector<std::int64_t>& r) {
+  long double e = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const auto d = static_cast<long double>(static_cast<std::int64_t>(c[i]) - r[i]);
+    e += d * d;
+  }
+  return e;
+}
+
+// No marker code (0xFF followed by 0x90..0xFF) anywhere, and no trailing 0xFF.
+bool marker_free(const std::vector<std::uint8_t>& d) {
+  for (std::size_t i = 0; i + 1 < d.size(); ++i)
+    if (d[i] == 0xFF && d[i + 1] > 0x8F) return false;
+  return d.empty() || d.back() != 0xFF;
+}
+
+std::string describe(int w, int h, Orientation o, Dist d, BlockStyle s) {
+  std::ostringstream os;
+  os << w << "x" << h << " orientation " << static_cast<int>(o) << " " << dist_name(d) << " style 0x" << std::hex
+     << static_cast<int>(s.to_spcod());
+  return os.str();
+}
+
+// Encodes, then decodes the whole codeword and every truncation of it at the reported pass lengths.
+void check_block(const Block& b, int w, int h, Orientation o, BlockStyle style, const std::string& what) {
+  SCOPED_TRACE(what);
+  const EncodedBlock enc = codec::t1::encode_block(b.c, w, h, o, b.mb, style);
+
+  std::uint32_t any = 0;
+  for (auto v : b.c) any |= static_cast<std::uint32_t>(v < 0 ? -static_cast<std::int64_t>(v) : v);
+  const int planes = static_cast<int>(std::bit_width(any));
+  ASSERT_EQ(enc.missing_msbs, b.mb - planes);
+  const int total = planes > 0 ? 3 * planes - 2 : 0;
+  ASSERT_EQ(static_cast<int>(enc.passes.size()), total);
+  if (total == 0) {
+    EXPECT_TRUE(enc.data.empty());
+    return;
+  }
+  ASSERT_EQ(enc.passes.back().length, enc.data.size());
+  EXPECT_TRUE(marker_free(enc.data));
+
+  // The decoder needs the segment lengths a packet header would carry: those of terminated passes.
+  const t1ref::T1Decoder rules(w, h, band_of(o), planes, style, enc.data, {});
+  std::vector<std::size_t> full_ends;
+  for (int k = 0; k < total; ++k) {
+    const auto& p = enc.passes[static_cast<std::size_t>(k)];
+    ASSERT_EQ(p.terminated, rules.is_terminated(k)) << "pass " << k;
+    if (k > 0) {
+      ASSERT_GE(p.length, enc.passes[static_cast<std::size_t>(k - 1)].length) << "pass " << k;
+    }
+    if (p.terminated) full_ends.push_back(p.length);
+  }
+
+  // Full decode, remembering the reconstruction after every pass.
+  std::vector<std::vector<std::int64_t>> after_pass;
+  t1ref::T1Decoder full(w, h, band_of(o), planes, style, enc.data, full_ends);
+  for (int k = 0; k < total; ++k) {
+    full.decode_pass();
+    after_pass.push_back(full.reconstruction());
+  }
+  EXPECT_EQ(full.segmentation_errors(), 0);
+  std::vector<std::int64_t> original(b.c.begin(), b.c.end());
+  ASSERT_EQ(after_pass.back(), original) << "lossless round trip";
+
+  // Every truncation point: same reconstruction as the full decode, distortion as reported.
+  const long double energy = squared_error(b.c, std::vector<std::int64_t>(b.c.size(), 0));
+  long double claimed = energy;
+  for (int k = 1; k <= total; ++k) {
+    const auto& last = enc.passes[static_cast<std::size_t>(k - 1)];
+    claimed -= last.distortion_decrease;
+    std::vector<std::size_t> ends;
+    for (int j = 0; j < k - 1; ++j)
+      if (enc.passes[static_cast<std::size_t>(j)].terminated) ends.push_back(enc.passes[static_cast<std::size_t>(j)].length);
+    ends.push_back(last.length);
+    const std::span<const std::uint8_t> cut(enc.data.data(), last.length);
+    t1ref::T1Decoder dec(w, h, band_of(o), planes, style, cut, ends);
+    for (int j = 0; j < k; ++j) dec.decode_pass();
+    const auto recon = dec.reconstruction();
+    ASSERT_EQ(recon, after_pass[static_cast<std::size_t>(k - 1)])
+        << "truncated after pass " << k - 1 << " at " << last.length << " of " << enc.data.size() << " bytes";
+    const long double error = squared_error(b.c, recon);
+    ASSERT_LE(std::fabs(static_cast<double>(error - claimed)), 1e-6 * static_cast<double>(energy))
+        << "pass " << k - 1 << ": error " << static_cast<double>(error) << ", energy minus reported decreases "
+        << static_cast<double>(claimed);
+  }
+}
+
+const Orientation kOrientations[] = {Orientation::LL, Orientation::HL, Orientation::LH, Orientation::HH};
+
+struct Size {
+  int w, h;
+};
+
+std::vector<Size> all_sizes() {
+  std::vector<Size> s;
+  for (int w = 4; w <= 64; w *= 2)
+    for (int h = 4; h <= 64; h *= 2) s.push_back({w, h});
+  for (Size extra : {Size{32, 128}, Size{128, 32}, Size{1024, 4}, Size{4, 1024}, Size{1, 1}, Size{3, 5}, Size{7, 64},
+                     Size{64, 7}, Size{5, 3}, Size{2, 2}, Size{1, 9}, Size{13, 17}, Size{1024, 1}, Size{1, 1024},
+                     Size{61, 3}})
+    s.push_back(extra);
+  return s;
+}
+
+TEST(T1, AllZeroBlockHasNoPasses) {
+  const std::vector<std::int32_t> zeros(64 * 64, 0);
+  const EncodedBlock enc = codec::t1::encode_block(zeros, 64, 64, Orientation::HH, 11, BlockStyle{});
+  EXPECT_TRUE(enc.data.empty());
+  EXPECT_TRUE(enc.passes.empty());
+  EXPECT_EQ(enc.missing_msbs, 11);
+}
+
+TEST(T1, SinglePlaneBlockHasOneCleanupPass) {
+  std::vector<std::int32_t> c(16, 0);
+  c[5] = -1;
+  const EncodedBlock enc = codec::t1::encode_block(c, 4, 4, Orientation::LL, 3, BlockStyle{});
+  ASSERT_EQ(enc.passes.size(), 1u);
+  EXPECT_EQ(enc.missing_msbs, 2);
+  EXPECT_TRUE(enc.passes[0].terminated);
+  EXPECT_DOUBLE_EQ(enc.passes[0].distortion_decrease, 1.0);
+}
+
+TEST(T1, RoundTripsEverySizeOrientationAndDistribution) {
+  std::mt19937 rng(2024);
+  for (Size s : all_sizes())
+    for (Orientation o : kOrientations)
+      for (Dist d : {Dist::Zero, Dist::Single, Dist::Sparse, Dist::Dense, Dist::Laplacian}) {
+        const Block b = make_block(d, s.w, s.h, rng);
+        check_block(b, s.w, s.h, o, BlockStyle{}, describe(s.w, s.h, o, d, BlockStyle{}));
+        if (HasFatalFailure()) return;
+      }
+}
+
+std::vector<BlockStyle> styles() {
+  std::vector<BlockStyle> out;
+  for (std::uint8_t bits : {0x00, 0x01, 0x02, 0x04, 0x08, 0x10, 0x20, 0x3F, 0x05, 0x11, 0x15, 0x29, 0x0B})
+    out.push_back(BlockStyle::from_spcod(bits));
+  return out;
+}
+
+// Checking every truncation point costs passes^2 * coefficients in the reference decoder, so the
+// largest blocks take one orientation per case, rotating, while small ones take all four.
+std::vector<Orientation> orientations_for(Size s, std::size_t rotation) {
+  if (s.w * s.h <= 1024) return {std::begin(kOrientations), std::end(kOrientations)};
+  return {kOrientations[rotation % 4]};
+}
+
+TEST(T1, RoundTripsEveryModeSwitchAloneAndTogether) {
+  std::mt19937 rng(77);
+  const Size sizes[] = {{4, 4}, {1, 1}, {3, 5}, {16, 16}, {7, 64}, {13, 17}, {64, 64}, {1024, 4}, {4, 1024}, {32, 128}};
+  std::size_t rotation = 0;
+  for (BlockStyle st : styles())
+    for (Size s : sizes)
+      for (Dist d : {Dist::Single, Dist::Sparse, Dist::Dense, Dist::Laplacian})
+        for (Orientation o : orientations_for(s, rotation++)) {
+          const Block b = make_block(d, s.w, s.h, rng);
+          check_block(b, s.w, s.h, o, st, describe(s.w, s.h, o, d, st));
+          if (HasFatalFailure()) return;
+        }
+}
+
+TEST(T1, RoundTripsLargeMagnitudes) {
+  std::mt19937 rng(31);
+  const Size sizes[] = {{4, 4}, {3, 5}, {16, 16}, {64, 64}, {1024, 4}};
+  std::size_t rotation = 0;
+  for (BlockStyle st : {BlockStyle{}, BlockStyle::from_spcod(0x01), BlockStyle::from_spcod(0x3F),
+                        BlockStyle::from_spcod(0x19)})
+    for (Size s : sizes)
+      for (Dist d : {Dist::Large, Dist::Huge})
+        for (Orientation o : orientations_for(s, rotation++)) {
+          const Block b = make_block(d, s.w, s.h, rng);
+          check_block(b, s.w, s.h, o, st, describe(s.w, s.h, o, d, st));
+          if (HasFatalFailure()) return;
+        }
+}
+
+TEST(T1, RejectsInconsistentArguments) {
+  const std::vector<std::int32_t> c(12, 3);
+  EXPECT_THROW(codec::t1::encode_block(c, 4, 4, Orientation::LL, 8, {}), std::invalid_argument);  // 12 != 16
+  EXPECT_THROW(codec::t1::encode_block(c, 0, 12, Orientation::LL, 8, {}), std::invalid_argument);
+  EXPECT_THROW(codec::t1::encode_block(c, 4, 3, Orientation::LL, 1, {}), std::invalid_argument);  // 3 needs 2 planes
+  EXPECT_THROW(codec::t1::encode_block(c, 4, 3, Orientation::LL, 32, {}), std::invalid_argument);
+  const std::vector<std::int32_t> lowest(1, INT32_MIN);  // magnitude 2^31 needs 32 planes
+  EXPECT_THROW(codec::t1::encode_block(lowest, 1, 1, Orientation::LL, 31, {}), std::invalid_argument);
+}
+
+}  // namespace
