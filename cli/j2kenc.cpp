@@ -13,6 +13,7 @@
 #include "imageio/read.h"
 #include "number_pairs.h"
 #include "one_line.h"
+#include "quiet_stderr.h"
 
 namespace {
 
@@ -120,7 +121,10 @@ int main(int argc, char** argv) {
     codec::validate(params);  // before reading: option errors should not wait for a large image
 
     const auto t0 = std::chrono::steady_clock::now();
-    const codec::SourceImage image = codec::to_source_image(imageio::read_image(input), input);
+    const codec::SourceImage image = [&] {
+      const cli::QuietStderr quiet_libraries;
+      return codec::to_source_image(imageio::read_image(input), input);
+    }();
     const std::vector<std::uint8_t> bytes = codec::encode(image, params, format);
     imageio::write_bytes_atomically(output, bytes);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

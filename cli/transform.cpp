@@ -1,5 +1,7 @@
 #include "transform.h"
 
+#include "quiet_stderr.h"
+
 #include <algorithm>
 #include <cctype>
 #include <chrono>
@@ -82,7 +84,10 @@ void write_output(const Request& request, std::vector<float> samples, int width,
 void run(const Request& request) {
   check_file_kinds(request);
   const std::unique_ptr<dwt::DwtBackend> backend = make_backend(request);
-  const imageio::Image image = imageio::read_greyscale(request.input);
+  const imageio::Image image = [&] {
+    const cli::QuietStderr quiet_libraries;  // one line of ours, none of libpng's
+    return imageio::read_greyscale(request.input);
+  }();
   validate_plane(request, image);
   const int width = image.width;
   const int height = image.height;

@@ -205,6 +205,48 @@ TEST(J2kLossless, SopEphAndModeSwitches) {
   }
 }
 
+// PGX (T.803's test format) keeps signed samples: "PG ML +|- depth width height\n", then big-endian
+// samples of 1 or 2 bytes. Both decoders write component c of NAME.pgx as NAME_c.pgx.
+std::vector<std::int32_t> read_pgx(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string pg, ml, sign;
+  int depth = 0, w = 0, h = 0;
+  in >> pg >> ml;
+  in >> std::ws;
+  if (in.peek() == '+' || in.peek() == '-') in >> sign;
+  in >> depth >> w >> h;
+  in.get();
+  const bool is_signed = sign == "-";
+  const int bytes = depth <= 8 ? 1 : 2;
+  std::vector<std::int32_t> out;
+  for (int i = 0; i < w * h; ++i) {
+    std::uint32_t v = 0;
+    for (int b = 0; b < bytes; ++b) v = (v << 8) | static_cast<std::uint8_t>(in.get());
+    // Negative samples come sign-extended to the whole 1 or 2 bytes.
+    std::int32_t s = static_cast<std::int32_t>(v);
+    if (is_signed && (v >> (8 * bytes - 1)) & 1) s -= 1 << (8 * bytes);
+    out.push_back(s);
+  }
+  return out;
+}
+
+TEST(J2kLossless, SignedSamples) {
+  for (int bits : {8, 12, 16}) {
+    SCOPED_TRACE(bits);
+    imageio::Image img = testimages::generate(testimages::Pattern::Noise, 29, 19, 1, bits, true);
+    Scratch scratch;
+    const auto bytes = codec::encode(to_source(img), lossless(), codec::FileFormat::Codestream);
+    write_file(scratch.dir / "s.j2k", bytes);
+    for (const std::string tool : {"opj_decompress", "grk_decompress"}) {
+      const fs::path out = scratch.dir / (tool + ".pgx");
+      ASSERT_EQ(std::system((tool + " -i '" + (scratch.dir / "s.j2k").string() + "' -o '" + out.string() + "' >/dev/null 2>&1").c_str()), 0);
+      const auto decoded = read_pgx(scratch.dir / (tool + "_0.pgx"));
+      ASSERT_EQ(decoded.size(), img.pixels.size()) << tool;
+      for (std::size_t i = 0; i < decoded.size(); ++i) ASSERT_EQ(decoded[i], static_cast<std::int32_t>(img.pixels[i])) << tool << " at " << i;
+    }
+  }
+}
+
 TEST(J2kLossless, KodakPhotographs) {
   const char* root = std::getenv("GPUJ2K_SOURCE_DIR");
   const fs::path dir = fs::path(root ? root : ".") / ".." / "shared" / "testimages" / "kodak";

@@ -180,7 +180,7 @@ class T1Decoder {
   int plane_of(int pass) const { return planes_ - 1 - (pass + 2) / 3; }
   // D.6: bypass leaves the SPP and MRP raw from the fifth plane down (after the first 10 passes).
   bool is_raw(int pass) const { return style_.bypass && pass >= 10 && kind_of(pass) != 2; }
-  // Table D.9-style termination: after every pass with ERTERM-all; with bypass after each cleanup
+  // Termination (D.4, D.6): after every pass with "terminate each pass"; with bypass after each cleanup
   // pass from the fourth plane on (pass 9 onwards) and after each raw refinement pass; and at the end.
   bool is_terminated(int pass) const {
     if (pass == pass_total() - 1 || style_.terminate_each_pass) return true;

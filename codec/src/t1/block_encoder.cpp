@@ -1,5 +1,6 @@
 #include "codec/t1/block_encoder.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 

@@ -31,42 +31,48 @@ inline int bit_at(std::uint32_t magnitude, int plane) { return static_cast<int>(
 
 // Codes the sign of a coefficient whose significance bit just came out 1, then records it.
 template <class Symbols>
-inline double become_significant(const BlockView& v, std::ptrdiff_t i, int row, int plane, Symbols& s) {
+inline std::int64_t become_significant(const BlockView& v, std::ptrdiff_t i, int row, const PlaneDistortion& d,
+                                       Symbols& s) {
   std::uint16_t* f = v.flags + i;
   const unsigned negative = static_cast<unsigned>(*f >> 15);
   s.sign(negative, *f);
   make_significant(f, v.stride, negative, v.causal && row == 0);
-  return significance_gain(v.magnitude[i], plane);
+  return d.significance_gain(v.magnitude[i]);
 }
 
 // D.3.1: insignificant coefficients with at least one significant neighbour.
 template <class Symbols>
 double significance_pass_impl(const BlockView v, int plane, const ZeroCodingTable& zc, Symbols s) {
-  double gain = 0.0;
-  for_each_in_scan_order(v, [&](std::ptrdiff_t i, int row) {
+  const PlaneDistortion d(plane);
+  DistortionSum gain(plane);
+  // A column has no candidate if all four are significant, or none has a significant neighbour
+  // (then none of them becomes significant either, so the column stays as it is).
+  auto worth_visiting = [](ColumnSummary c) { return !(c.all & kSig) && (c.any & kNeighbourMask); };
+  for_each_in_scan_order(v, worth_visiting, [&](std::ptrdiff_t i, int row) {
     std::uint16_t& f = v.flags[i];
     if ((f & kSig) || !(f & kNeighbourMask)) return;
     const int bit = bit_at(v.magnitude[i], plane);
     s.decision(bit, zc[f & kNeighbourMask]);
     f |= kVisited;
-    if (bit) gain += become_significant(v, i, row, plane, s);
+    if (bit) gain.add(become_significant(v, i, row, d, s));
   });
-  return gain;
+  return gain.value();
 }
 
 // D.3.3: coefficients significant before this bit-plane; context by Table D.4.
 template <class Symbols>
 double refinement_pass_impl(const BlockView v, int plane, Symbols s) {
-  double gain = 0.0;
-  for_each_in_scan_order(v, [&](std::ptrdiff_t i, int /*row*/) {
+  const PlaneDistortion d(plane);
+  DistortionSum gain(plane);
+  auto worth_visiting = [](ColumnSummary c) { return (c.any & kSig) != 0; };
+  for_each_in_scan_order(v, worth_visiting, [&](std::ptrdiff_t i, int /*row*/) {
     std::uint16_t& f = v.flags[i];
     if ((f & (kSig | kVisited)) != kSig) return;
-    const int context = (f & kRefined) ? kRefineLater : ((f & kNeighbourMask) ? kRefineFirstBusy : kRefineFirstQuiet);
-    s.decision(bit_at(v.magnitude[i], plane), context);
+    s.decision(bit_at(v.magnitude[i], plane), refinement_context(f));
     f |= kRefined;
-    gain += refinement_gain(v.magnitude[i], plane);
+    gain.add(d.refinement_gain(v.magnitude[i]));
   });
-  return gain;
+  return gain.value();
 }
 
 // Which of the four rows of a run-length column holds the first 1 at `plane`; 4 if none.
@@ -79,8 +85,9 @@ inline int first_one_in_column(const BlockView& v, std::ptrdiff_t i, int plane) 
 }  // namespace
 
 // The arithmetic-coded passes work on a local copy of the coder (and of the view) that the
-// compiler can keep in registers for the whole pass; see MqEncoder::byte_out.
-double significance_pass(const BlockView& v, int plane, const ZeroCodingTable& zc, ContextSet& cx, MqEncoder& mq) {
+// compiler can keep in registers for the whole pass (see MqEncoder::byte_out). `flatten` makes
+// sure everything is inlined early enough for that to happen.
+[[gnu::flatten]] double significance_pass(const BlockView& v, int plane, const ZeroCodingTable& zc, ContextSet& cx, MqEncoder& mq) {
   MqEncoder coder = mq;
   const double gain = significance_pass_impl(BlockView(v), plane, zc, MqSymbols{coder, cx});
   mq = coder;
@@ -91,7 +98,7 @@ double significance_pass_raw(const BlockView& v, int plane, RawWriter& raw) {
   return significance_pass_impl(BlockView(v), plane, kZeroCodingLlLh, RawSymbols{raw});
 }
 
-double refinement_pass(const BlockView& v, int plane, ContextSet& cx, MqEncoder& mq) {
+[[gnu::flatten]] double refinement_pass(const BlockView& v, int plane, ContextSet& cx, MqEncoder& mq) {
   MqEncoder coder = mq;
   const double gain = refinement_pass_impl(BlockView(v), plane, MqSymbols{coder, cx});
   mq = coder;
@@ -103,12 +110,13 @@ double refinement_pass_raw(const BlockView& v, int plane, RawWriter& raw) {
 }
 
 // D.3.4: everything the significance pass left, with run-length coding of quiet stripe columns.
-double cleanup_pass(const BlockView& view, int plane, const ZeroCodingTable& zc, ContextSet& cx, MqEncoder& coder) {
+[[gnu::flatten]] double cleanup_pass(const BlockView& view, int plane, const ZeroCodingTable& zc, ContextSet& cx, MqEncoder& coder) {
   const BlockView v = view;
   MqEncoder mq = coder;
   MqSymbols s{mq, cx};
   const std::ptrdiff_t stride = v.stride;
-  double gain = 0.0;
+  const PlaneDistortion d(plane);
+  DistortionSum gain(plane);
   for (int y0 = 0; y0 < v.height; y0 += 4) {
     const int rows = std::min(4, v.height - y0);
     for (int x = 0; x < v.width; ++x) {
@@ -117,8 +125,16 @@ double cleanup_pass(const BlockView& view, int plane, const ZeroCodingTable& zc,
       if (rows == 4) {
         // Run-length mode: a full column of four coefficients, none significant or visited, and
         // all with the all-zero neighbourhood (zero-coding context 0 in every orientation).
-        const std::uint16_t* f = v.flags + top;
-        const unsigned any = f[0] | f[stride] | f[2 * stride] | f[3 * stride];
+        std::uint16_t* f = v.flags + top;
+        const unsigned f0 = f[0], f1 = f[stride], f2 = f[2 * stride], f3 = f[3 * stride];
+        // Nothing to code when each of the four is significant or was coded by the significance
+        // pass (kVisited sits one bit above kSig); only the marks need clearing.
+        static_assert(kVisited == kSig << 1);
+        if ((f0 | f0 >> 1) & (f1 | f1 >> 1) & (f2 | f2 >> 1) & (f3 | f3 >> 1) & kSig) {
+          for (int k = 0; k < 4; ++k) f[k * stride] = static_cast<std::uint16_t>(f[k * stride] & ~kVisited);
+          continue;
+        }
+        const unsigned any = f0 | f1 | f2 | f3;
         if (!(any & (kSig | kVisited | kNeighbourMask))) {
           row = first_one_in_column(v, top, plane);
           if (row == 4) {
@@ -128,7 +144,7 @@ double cleanup_pass(const BlockView& view, int plane, const ZeroCodingTable& zc,
           mq.encode(1, cx[kRunLengthContext]);
           mq.encode(row >> 1, cx[kUniformContext]);
           mq.encode(row & 1, cx[kUniformContext]);
-          gain += become_significant(v, top + row * stride, row, plane, s);
+          gain.add(become_significant(v, top + row * stride, row, d, s));
           ++row;
         }
       }
@@ -140,12 +156,12 @@ double cleanup_pass(const BlockView& view, int plane, const ZeroCodingTable& zc,
         }
         const int bit = bit_at(v.magnitude[i], plane);
         mq.encode(bit, cx[zc[f & kNeighbourMask]]);
-        if (bit) gain += become_significant(v, i, row, plane, s);
+        if (bit) gain.add(become_significant(v, i, row, d, s));
       }
     }
   }
   coder = mq;
-  return gain;
+  return gain.value();
 }
 
 }  // namespace codec::t1

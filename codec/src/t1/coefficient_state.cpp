@@ -21,7 +21,7 @@ CoefficientState::CoefficientState(std::span<const std::int32_t> coefficients, i
       const std::uint32_t m = c < 0 ? 0u - static_cast<std::uint32_t>(c) : static_cast<std::uint32_t>(c);
       const auto i = static_cast<std::size_t>((y + 1) * stride_ + x + 1);
       magnitude_[i] = m;
-      flags_[i] = c < 0 ? kNeg : 0;
+      flags_[i] = c < 0 ? std::uint16_t{kNeg} : std::uint16_t{0};
       any_bits |= m;
     }
   // The OR of all magnitudes has the same highest set bit as their maximum, and is cheaper.

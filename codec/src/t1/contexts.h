@@ -10,7 +10,6 @@ namespace codec::t1 {
 
 // The 19 context labels of T.800 Annex D: 0-8 zero coding (Table D.1), 9-13 sign coding
 // (Table D.3), 14-16 magnitude refinement (Table D.4), then run-length and UNIFORM (D.3.4).
-inline constexpr int kSignContext0 = 9;
 inline constexpr int kRefineFirstQuiet = 14;  // first refinement, no significant neighbour
 inline constexpr int kRefineFirstBusy = 15;   // first refinement, some significant neighbour
 inline constexpr int kRefineLater = 16;       // any later refinement
@@ -20,7 +19,16 @@ inline constexpr int kContextCount = 19;
 
 using ContextSet = std::array<MqContext, kContextCount>;
 
-// Initial states (T.800 D.4, Table D.7): UNIFORM 46, run-length 3, the all-zero neighbourhood
+// Magnitude refinement context (Table D.4) from a coefficient's flags: 14 for a first refinement
+// with no significant neighbour, 15 with one, 16 for every later refinement. A lookup rather than
+// a branch: whether a neighbour is significant is close to random in busy blocks.
+inline int refinement_context(std::uint16_t flags) {
+  static constexpr std::uint8_t kContexts[4] = {kRefineFirstQuiet, kRefineFirstBusy, kRefineLater, kRefineLater};
+  const unsigned refined = (flags & kRefined) ? 2u : 0u;
+  return kContexts[refined | ((flags & kNeighbourMask) != 0 ? 1u : 0u)];
+}
+
+// Initial states (T.800 D.4): UNIFORM 46, run-length 3, the all-zero neighbourhood
 // zero-coding context 4, everything else 0; every MPS 0.
 inline void reset_contexts(ContextSet& cx) {
   cx.fill(MqContext(0, 0));

@@ -1,34 +1,58 @@
 #pragma once
+#include <cmath>
 #include <cstdint>
 
 namespace codec::t1 {
 
 // Squared-error bookkeeping on the integer coefficient grid for a decoder that places a
 // significant coefficient at the middle of its remaining uncertainty interval: with the bit-planes
-// down to p known, magnitude m sits in [m_p, m_p + 2^p) where m_p keeps m's bits >= p, and is
-// reconstructed as m_p + 2^(p-1); at p = 0 the value is known exactly. 64-bit throughout because
-// magnitudes reach 2^31 - 1, whose square needs 62 bits.
+// down to p known, magnitude m lies in [m_p, m_p + 2^p) (m_p keeps m's bits >= p) and is
+// reconstructed as m_p + 2^(p-1); at p = 0 it is known exactly. The residual m - reconstruction
+// is then (m mod 2^p) - 2^(p-1), or 0 at p = 0, which needs nothing but a mask and an offset.
+class PlaneDistortion {
+ public:
+  explicit PlaneDistortion(int plane)
+      : low_mask_((std::uint32_t{1} << plane) - 1),
+        low_half_(plane > 0 ? std::uint32_t{1} << (plane - 1) : 0),
+        high_mask_((std::uint32_t{2} << plane) - 1),
+        high_half_(std::uint32_t{1} << plane) {}
 
-inline std::int64_t midpoint_reconstruction(std::uint32_t m, int p) {
-  if (p == 0) return m;
-  const std::uint64_t known = (static_cast<std::uint64_t>(m) >> p) << p;
-  return static_cast<std::int64_t>(known + (std::uint64_t{1} << (p - 1)));
-}
+  // The coefficient becomes significant at this plane: its reconstruction leaves 0.
+  std::int64_t significance_gain(std::uint32_t m) const {
+    const std::int64_t before = m;
+    return before * before - square(residual(m, low_mask_, low_half_));
+  }
 
-inline std::int64_t squared(std::int64_t x) { return x * x; }
+  // This plane's bit of a coefficient significant before: its interval halves. Negative at
+  // times: the new mid-point can land further from m than the old one.
+  std::int64_t refinement_gain(std::uint32_t m) const {
+    return square(residual(m, high_mask_, high_half_)) - square(residual(m, low_mask_, low_half_));
+  }
 
-// The coefficient becomes significant at plane p: reconstruction 0 -> mid-point.
-inline double significance_gain(std::uint32_t m, int p) {
-  const std::int64_t before = squared(m);
-  const std::int64_t after = squared(static_cast<std::int64_t>(m) - midpoint_reconstruction(m, p));
-  return static_cast<double>(before - after);
-}
+ private:
+  static std::int64_t residual(std::uint32_t m, std::uint32_t mask, std::uint32_t half) {
+    return static_cast<std::int64_t>(m & mask) - half;
+  }
+  static std::int64_t square(std::int64_t x) { return x * x; }
 
-// Plane p's bit of an already significant coefficient: the interval halves.
-inline double refinement_gain(std::uint32_t m, int p) {
-  const std::int64_t before = squared(static_cast<std::int64_t>(m) - midpoint_reconstruction(m, p + 1));
-  const std::int64_t after = squared(static_cast<std::int64_t>(m) - midpoint_reconstruction(m, p));
-  return static_cast<double>(before - after);
-}
+  std::uint32_t low_mask_, low_half_;    // planes below this one
+  std::uint32_t high_mask_, high_half_;  // this plane and those below
+};
+
+// A pass's total, exact. Every gain at plane p is a multiple of 2^(p-1): a significance gain is
+// m^2 - (m - r)^2 = r (2m - r) with the reconstruction r an odd multiple of 2^(p-1), a refinement
+// gain (m - r1)^2 - (m - r2)^2 = (r2 - r1)(2m - r1 - r2) with r2 - r1 = +-2^(p-1). Counted in that
+// unit a gain stays below 2^34 in magnitude, so a 64-bit sum cannot overflow however large the
+// block, where the gains themselves (up to 2^62) could.
+class DistortionSum {
+ public:
+  explicit DistortionSum(int plane) : unit_log2_(plane > 0 ? plane - 1 : 0) {}
+  void add(std::int64_t gain) { units_ += gain >> unit_log2_; }  // exact: see above
+  double value() const { return std::ldexp(static_cast<double>(units_), unit_log2_); }
+
+ private:
+  int unit_log2_;
+  std::int64_t units_ = 0;
+};
 
 }  // namespace codec::t1

@@ -1,6 +1,7 @@
 #include "codec/t1/mq_encoder.h"
 
 #include <algorithm>
+#include <cassert>
 
 namespace codec::t1 {
 
@@ -11,11 +12,33 @@ void MqEncoder::start() {
   // 12, not 13: the byte before a new segment is never 0xFF here, because every segment this
   // coder ends drops a trailing 0xFF (and the raw writer never ends on one).
   ct_ = 12;
-  coded_ = false;
+}
+
+MqEncoder::AfterByteOut MqEncoder::byte_out(std::vector<std::uint8_t>& out, std::size_t segment_start,
+                                            std::uint32_t c) {
+  const bool has_last = out.size() > segment_start;
+  if (has_last && out.back() == 0xFF) {
+    // Bit stuffing: the byte after 0xFF carries 7 bits, its MSB left free to absorb a carry.
+    out.push_back(static_cast<std::uint8_t>(c >> 20));
+    return {c & 0xFFFFF, 7};
+  }
+  if (c & 0x8000000) {
+    // Carry into the byte already written. The first byte of a segment never receives one: the
+    // 12 initial shifts leave the whole initial interval below bit 27.
+    assert(has_last);
+    ++out.back();
+    c &= 0x7FFFFFF;
+    if (out.back() == 0xFF) {
+      out.push_back(static_cast<std::uint8_t>(c >> 20));
+      return {c & 0xFFFFF, 7};
+    }
+  }
+  out.push_back(static_cast<std::uint8_t>(c >> 19));
+  return {c & 0x7FFFF, 8};
 }
 
 void MqEncoder::flush() {
-  if (!coded_) return;  // an empty segment needs no bytes: no symbol has to be decoded from it
+  if (untouched()) return;  // an empty segment needs no bytes: no symbol has to be decoded from it
   // SETBITS: the value in [C, C + A) with the most trailing ones, which the decoder's 0xFF fill
   // reproduces for free.
   const std::uint32_t top = c_ + a_;

@@ -30,8 +30,7 @@ inline bool pass_is_raw(int pass, const BlockStyle& s) {
   return s.bypass && pass >= 10 && pass_kind(pass) != PassKind::Cleanup;
 }
 
-// Whether the codeword segment ends after this pass (Table D.8/D.9 termination patterns): always
-// after the last pass; after every pass with "terminate each pass"; with bypass, wherever the
+// Whether the codeword segment ends after this pass (T.800 D.4, D.6): always after the last pass; after every pass with "terminate each pass"; with bypass, wherever the
 // next pass switches between arithmetic and raw coding.
 inline bool pass_ends_segment(int pass, int count, const BlockStyle& s) {
   if (pass == count - 1 || s.terminate_each_pass) return true;

@@ -45,46 +45,43 @@ class MqEncoder {
   void start();
 
   // ENCODE (C.2.2) with CODEMPS/CODELPS (C.2.5, C.2.6) and their conditional exchange.
-  void encode(int bit, Context& cx) {
+  // Forced inline: it is the block coder's innermost operation (see also byte_out).
+  [[gnu::always_inline]] void encode(int bit, Context& cx) {
     const MqTransition& t = kMqTransitions[cx.packed];
     const std::uint32_t qe = t.qe;
+    const bool is_mps = bit == cx.mps();
     a_ -= qe;
-    coded_ = true;
-    if (bit == cx.mps()) {
-      if (a_ & 0x8000) {  // MPS without renormalisation: by far the most frequent path
-        c_ += qe;
-        return;
-      }
-      if (a_ < qe)
-        a_ = qe;  // conditional exchange: the MPS takes the (larger) lower sub-interval
-      else
-        c_ += qe;
-      cx.packed = t.after_mps;
-    } else {
-      if (a_ < qe)
-        c_ += qe;  // conditional exchange: the LPS takes the upper sub-interval
-      else
-        a_ = qe;
-      cx.packed = t.after_lps;
-    }
+    // CODEMPS and CODELPS differ only in which sub-interval the symbol gets: the upper one
+    // (C += Qe, A keeps A - Qe) or the lower one (A = Qe). The MPS normally takes the upper one,
+    // the LPS the lower; the conditional exchange (A - Qe < Qe) swaps them. Selecting instead of
+    // branching avoids a misprediction on every symbol of a near-even context (refinement bits).
+    // (Masks rather than ?:, which the compiler turns back into a branch.)
+    const std::uint32_t upper = 0u - static_cast<std::uint32_t>(is_mps != (a_ < qe));  // all ones or zero
+    c_ += qe & upper;
+    a_ = (a_ & upper) | (qe & ~upper);
+    if (a_ & 0x8000) return;  // only an MPS can leave A >= 0x8000: no renormalisation, state kept
+    cx.packed = t.next[is_mps];
     renormalize();
   }
 
-  // FLUSH (C.2.9): the shortest standard termination; a trailing 0xFF is dropped because the
-  // decoder reads 0xFF past the end anyway. A segment that coded nothing stays empty.
+  // FLUSH (C.2.9): the shortest standard termination. A trailing 0xFF is dropped: the decoder's
+  // 1-bit fill past the end stands in for it, and a codeword must not end on 0xFF anyway (it could
+  // form a marker with what follows). A segment that coded nothing stays empty.
   void flush();
 
   // Predictable termination (D.4.2, "ERTERM"): emits exactly the register bits down to the most
   // significant bit of the interval width, no bit chosen freely, so a decoder can check the tail.
   void flush_predictable();
 
+  // C holds 27 - CT code bits not yet output: BYTEOUT leaves bits 0..18 with CT = 8 (0..19 with
+  // CT = 7 after a stuffed byte) and every shift adds one.
   MqTruncationPoint truncation_point() const { return {out_->size(), 27 - ct_, segment_start_}; }
-  std::size_t segment_start() const { return segment_start_; }
 
  private:
   // RENORME (C.2.7), shifting in one go up to the next byte boundary instead of bit by bit.
-  void renormalize() {
-    int shift = std::countl_zero(a_) - 16;  // a_ is in [1, 0x8000) here: shifts until bit 15 is set
+  [[gnu::always_inline]] void renormalize() {
+    // A is in [1, 0x8000) here; "| 1" tells the compiler it is not 0 (no zero check needed).
+    int shift = std::countl_zero(a_ | 1u) - 16;  // shifts until bit 15 is set
     while (shift >= ct_) {
       a_ <<= ct_;
       c_ <<= ct_;
@@ -96,51 +93,39 @@ class MqEncoder {
     ct_ -= shift;
   }
 
-  // BYTEOUT (C.2.7) with carry propagation and bit stuffing after 0xFF. Inline on purpose: with
-  // no out-of-line call on the coding path, a coder copied into a local variable (as the coding
-  // passes do) lives entirely in CPU registers instead of being reloaded for every symbol.
+  // BYTEOUT (C.2.7) with carry propagation and bit stuffing after 0xFF. The register C goes in
+  // by value and comes back with the new CT: the coder's own address never reaches a function
+  // the compiler cannot see into, so a coder copied into a local (as the coding passes do) can
+  // live in CPU registers for a whole pass.
+  struct AfterByteOut {
+    std::uint32_t c;
+    int ct;
+  };
+  static AfterByteOut byte_out(std::vector<std::uint8_t>& out, std::size_t segment_start, std::uint32_t c);
   void byte_out() {
-    std::vector<std::uint8_t>& out = *out_;
-    const bool has_last = has_last_byte();
-    if (has_last && out.back() == 0xFF) {
-      // Bit stuffing: the byte after 0xFF carries 7 bits, its MSB left free to absorb a carry.
-      emit_stuffed();
-      return;
-    }
-    if (c_ & 0x8000000) {
-      // Carry into the byte already written. The first byte of a segment never receives one: the
-      // 12 initial shifts leave the whole initial interval below bit 27.
-      ++out.back();
-      c_ &= 0x7FFFFFF;
-      if (out.back() == 0xFF) {
-        emit_stuffed();
-        return;
-      }
-    }
-    out.push_back(static_cast<std::uint8_t>(c_ >> 19));
-    c_ &= 0x7FFFF;
-    ct_ = 8;
-  }
-
-  void emit_stuffed() {
-    out_->push_back(static_cast<std::uint8_t>(c_ >> 20));
-    c_ &= 0xFFFFF;
-    ct_ = 7;
+    const AfterByteOut r = byte_out(*out_, segment_start_, c_);
+    c_ = r.c;
+    ct_ = r.ct;
   }
 
   bool has_last_byte() const { return out_->size() > segment_start_; }
+
+  // Whether no symbol has been coded since start(): every symbol either adds Qe to C or
+  // renormalises (which lowers CT, and never brings it back to 12).
+  bool untouched() const { return c_ == 0 && ct_ == 12; }
 
   std::vector<std::uint8_t>* out_;
   std::size_t segment_start_ = 0;
   std::uint32_t a_ = 0x8000;
   std::uint32_t c_ = 0;
   int ct_ = 12;
-  bool coded_ = false;
 };
 
-// The number of bytes of `data` a decoder needs (reading 0xFF past the end, as T.800 C.3.4 and
-// every practical decoder do) to decode every symbol coded before `point` was taken, once the
-// segment that began at point.segment_start has been written up to `segment_end`.
+// The number of bytes of `data` a decoder needs to decode every symbol coded before `point` was
+// taken, once the segment that began at point.segment_start has been written up to `segment_end`.
+// Past the bytes it is given the decoder is assumed to read 1 bits, which is what T.800's BYTEIN
+// (C.3.4) produces once it meets 0xFF followed by a byte above 0x8F, i.e. the next marker or the
+// 0xFF 0xFF that decoders conventionally append to a codeword.
 //
 // Why this is safe: decoding the first n symbols right only needs the code value to lie in the
 // encoder's interval [C, C + A) at that time. If the kept bytes hold every bit of the C register

@@ -35,8 +35,7 @@ inline constexpr std::array<MqStateRow, kMqStateCount> kMqStates = {{
 // both successors with the MPS swap already folded in. This table is derived from the one above.
 struct MqTransition {
   std::uint16_t qe;
-  std::uint8_t after_mps;  // packed context after coding the MPS
-  std::uint8_t after_lps;  // packed context after coding the LPS
+  std::uint8_t next[2];  // packed context after coding [0] the LPS, [1] the MPS
 };
 
 inline constexpr std::array<MqTransition, 2 * kMqStateCount> kMqTransitions = [] {
@@ -46,7 +45,7 @@ inline constexpr std::array<MqTransition, 2 * kMqStateCount> kMqTransitions = []
       const MqStateRow& row = kMqStates[static_cast<std::size_t>(state)];
       const int lps_mps = row.switch_mps ? 1 - mps : mps;
       t[static_cast<std::size_t>(2 * state + mps)] = MqTransition{
-          row.qe, static_cast<std::uint8_t>(2 * row.nmps + mps), static_cast<std::uint8_t>(2 * row.nlps + lps_mps)};
+          row.qe, {static_cast<std::uint8_t>(2 * row.nlps + lps_mps), static_cast<std::uint8_t>(2 * row.nmps + mps)}};
     }
   return t;
 }();

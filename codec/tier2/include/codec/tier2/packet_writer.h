@@ -24,6 +24,9 @@ struct PrecinctBand {
 // per-block state (included before?, Lblock, passes sent) persist between layers, because every
 // packet header codes only what the previous packets of the precinct have not told the decoder.
 // Bands come in the packet's subband order (LL alone at resolution 0; HL, LH, HH above).
+// The plan and each block's missing_msbs are read at construction (they fill the tag trees); the
+// EncodedBlocks' data and pass lengths are read when packets are written, so the blocks must
+// outlive the writer.
 // Throws std::invalid_argument for an inconsistent plan, std::logic_error for layers out of order.
 class PrecinctPacketWriter {
  public:

@@ -1,0 +1,131 @@
+// j2kenc from the outside: output files readable by opj_dump and OpenImageIO, and every bad input
+// answered with one line on stderr, a non-zero exit and no output file.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include "imageio/read.h"
+#include "imageio/write.h"
+#include "testimages/patterns.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ProcessResult {
+  int exit_code = 0;
+  std::string err;
+};
+
+// Runs j2kenc with `args`, capturing stderr.
+ProcessResult j2kenc(const std::string& args, const fs::path& dir) {
+  const fs::path err = dir / "stderr.txt";
+  const std::string cmd = std::string("'") + J2KENC_PATH + "' " + args + " 2>'" + err.string() + "' >/dev/null";
+  ProcessResult r;
+  const int status = std::system(cmd.c_str());
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+  std::ifstream in(err);
+  r.err.assign(std::istreambuf_iterator<char>(in), {});
+  return r;
+}
+
+class J2kencCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::random_device rd;
+    dir = fs::temp_directory_path() / ("j2kenc_test_" + std::to_string(rd()));
+    fs::create_directories(dir);
+    rgb = dir / "rgb.png";
+    imageio::write_image(rgb.string(), testimages::generate(testimages::Pattern::Mix, 40, 30, 3, 8));
+  }
+  void TearDown() override { fs::remove_all(dir); }
+
+  // The shape every failure must have.
+  void expect_one_line_failure(const std::string& args, const std::string& needle) {
+    SCOPED_TRACE(args);
+    const fs::path out = dir / "out.j2k";
+    const ProcessResult r = j2kenc(args + " -o '" + out.string() + "'", dir);
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("j2kenc: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << "expected '" << needle << "' in: " << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  }
+
+  fs::path dir, rgb;
+};
+
+TEST_F(J2kencCli, Jp2OutputIsAcceptedByOpjDumpAndOpenImageIO) {
+  const fs::path out = dir / "x.jp2";
+  const ProcessResult r = j2kenc("-i '" + rgb.string() + "' -o '" + out.string() + "' --lossless", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string dump = "opj_dump -i '" + out.string() + "' >'" + (dir / "dump.txt").string() + "' 2>&1";
+  ASSERT_EQ(std::system(dump.c_str()), 0);
+  std::ifstream d(dir / "dump.txt");
+  const std::string text((std::istreambuf_iterator<char>(d)), {});
+  EXPECT_NE(text.find("numcomps=3"), std::string::npos) << text;
+  // OpenImageIO's JPEG 2000 reader gives back the very samples we encoded.
+  const imageio::Image back = imageio::read_image(out.string());
+  const imageio::Image original = imageio::read_image(rgb.string());
+  EXPECT_EQ(back.width, 40);
+  EXPECT_EQ(back.channels, 3);
+  EXPECT_EQ(back.pixels, original.pixels);
+}
+
+// Any format OpenImageIO reads goes in; what comes out of OpenJPEG is the samples as read.
+TEST_F(J2kencCli, ReadsBmpTiffAndPnmInputs) {
+  const imageio::Image rgb16 = testimages::generate(testimages::Pattern::Edges, 23, 17, 3, 16);
+  const imageio::Image grey8 = testimages::generate(testimages::Pattern::ZonePlate, 23, 17, 1, 8);
+  const std::pair<std::string, const imageio::Image*> inputs[] = {
+      {"in.bmp", &grey8}, {"in.tif", &rgb16}, {"in16.ppm", &rgb16}, {"in.pgm", &grey8}};
+  for (const auto& [name, image] : inputs) {
+    SCOPED_TRACE(name);
+    const fs::path in = dir / name, out = dir / (name + ".j2k");
+    imageio::write_image(in.string(), *image);
+    const auto r = j2kenc("-i '" + in.string() + "' -o '" + out.string() + "' --lossless", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const fs::path decoded = dir / (name + (image->channels == 1 ? ".pgm" : ".ppm"));
+    ASSERT_EQ(std::system(("opj_decompress -i '" + out.string() + "' -o '" + decoded.string() + "' >/dev/null 2>&1").c_str()), 0);
+    EXPECT_EQ(imageio::read_image(decoded.string()).pixels, imageio::read_image(in.string()).pixels);
+  }
+}
+
+TEST_F(J2kencCli, BadInputGetsOneLine) {
+  const std::string in = " -i '" + rgb.string() + "' ";
+  expect_one_line_failure("-i '" + (dir / "missing.png").string() + "' --lossless", "missing.png");
+  {
+    std::ofstream truncated(dir / "cut.png", std::ios::binary);
+    std::ifstream whole(rgb, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(whole)), {});
+    truncated << bytes.substr(0, bytes.size() / 2);
+  }
+  expect_one_line_failure("-i '" + (dir / "cut.png").string() + "' --lossless", "cut.png");
+  {
+    imageio::Image f;
+    f.width = 4, f.height = 4, f.channels = 1, f.bits_per_sample = 32, f.is_float = true;
+    f.pixels.assign(16, 0.5f);
+    imageio::write_image((dir / "float.pfm").string(), f);
+  }
+  expect_one_line_failure("-i '" + (dir / "float.pfm").string() + "' --lossless", "floating-point");
+  expect_one_line_failure(in + "--lossless --origin 2,2 --tile 8x8 --tile-origin 3,0", "tile origin");
+  expect_one_line_failure(in + "--lossless --codeblock 8x1024", "code-block 8x1024");
+  expect_one_line_failure(in + "--lossless --codeblock 48x48", "code-block 48x48");
+  expect_one_line_failure(in + "--lossless --precincts 100x100", "precinct");
+  expect_one_line_failure(in + "--lossless --order XYZ", "progression order");
+  expect_one_line_failure(in + "--lossless --modes fast", "mode");
+  expect_one_line_failure(in + "--lossless --levels 40", "levels");
+  expect_one_line_failure(in + "--lossless --tile 0x8", "tile");
+  expect_one_line_failure(in + "--lossless --origin 1", "--origin");
+  expect_one_line_failure(in, "lossless");
+  // An unknown output type is refused before anything is written.
+  const ProcessResult r = j2kenc("-i '" + rgb.string() + "' -o '" + (dir / "x.png").string() + "' --lossless", dir);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("unknown output type"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+}  // namespace
