@@ -57,3 +57,65 @@ TEST(Boundary, ExtensionSchemes) {
 }
 
 }  // namespace
+
+#include <cmath>
+#include <vector>
+
+#include "dwt/norms.h"
+
+namespace {
+
+// Norms against sums of squares of the published synthesis filters, computed here by hand:
+// 5/3 low [1/2 1 1/2], high [-1/8 -1/4 3/4 -1/4 -1/8]; 9/7 low (-1)^n g(n), high (-1)^n h(n).
+TEST(SynthesisNorms, LevelOneMatchesTheFilters) {
+  const auto& k53 = dwt::get_kernel(dwt::KernelId::Float53);
+  EXPECT_NEAR(dwt::synthesis_norm_1d(k53, 1, false), std::sqrt(1.5), 1e-12);
+  EXPECT_NEAR(dwt::synthesis_norm_1d(k53, 1, true), std::sqrt(2 * 0.015625 + 2 * 0.0625 + 0.5625), 1e-12);
+  const double g[] = {1.115087052457000, -0.591271763114250, -0.057543526228500, 0.091271763114250};
+  const double h[] = {0.602949018236358, 0.266864118442875, -0.078223266528990, -0.016864118442875, 0.026748757410810};
+  double low = g[0] * g[0], high = h[0] * h[0];
+  for (int i = 1; i < 4; ++i) low += 2 * g[i] * g[i];
+  for (int i = 1; i < 5; ++i) high += 2 * h[i] * h[i];
+  const auto& k97 = dwt::get_kernel(dwt::KernelId::Irreversible97);
+  EXPECT_NEAR(dwt::synthesis_norm_1d(k97, 1, false), std::sqrt(low), 1e-9);
+  EXPECT_NEAR(dwt::synthesis_norm_1d(k97, 1, true), std::sqrt(high), 1e-9);
+}
+
+// Deeper levels: the level-d basis is the synthesis filter convolved with the upsampled level-(d-1)
+// low-pass basis (noble identities), built here by explicit convolution of the literal taps.
+std::vector<double> convolve(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> out(a.size() + b.size() - 1, 0.0);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) out[i + j] += a[i] * b[j];
+  return out;
+}
+std::vector<double> upsample(const std::vector<double>& a) {
+  std::vector<double> out(2 * a.size() - 1, 0.0);
+  for (std::size_t i = 0; i < a.size(); ++i) out[2 * i] = a[i];
+  return out;
+}
+double norm(const std::vector<double>& v) {
+  double e = 0;
+  for (double x : v) e += x * x;
+  return std::sqrt(e);
+}
+
+TEST(SynthesisNorms, DeeperLevelsMatchExplicitConvolution) {
+  const std::vector<double> lo = {-0.091271763114250, -0.057543526228500, 0.591271763114250, 1.115087052457000,
+                                  0.591271763114250,  -0.057543526228500, -0.091271763114250};
+  const std::vector<double> hi = {0.026748757410810,  0.016864118442875, -0.078223266528990,
+                                  -0.266864118442875, 0.602949018236358, -0.266864118442875,
+                                  -0.078223266528990, 0.016864118442875, 0.026748757410810};
+  const auto& k97 = dwt::get_kernel(dwt::KernelId::Irreversible97);
+  std::vector<double> low_basis = lo, high_basis = hi;
+  for (int d = 2; d <= 5; ++d) {
+    high_basis = convolve(lo, upsample(high_basis));
+    low_basis = convolve(lo, upsample(low_basis));
+    EXPECT_NEAR(dwt::synthesis_norm_1d(k97, d, false), norm(low_basis), 1e-9) << d;
+    EXPECT_NEAR(dwt::synthesis_norm_1d(k97, d, true), norm(high_basis), 1e-9) << d;
+  }
+  EXPECT_NEAR(dwt::synthesis_norm(k97, 3, dwt::Orientation::HL),
+              dwt::synthesis_norm_1d(k97, 3, true) * dwt::synthesis_norm_1d(k97, 3, false), 1e-12);
+}
+
+}  // namespace
