@@ -3,7 +3,10 @@
 // exit, and no output file.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <optional>
 #include <cstdio>
 #include <string>
 
@@ -54,16 +57,88 @@ codec::t1::BlockStyle parse_modes(const std::string& list) {
   return s;
 }
 
+std::vector<double> parse_numbers(const std::string& list, const std::string& option) {
+  std::vector<double> out;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = list.find(',', start);
+    const std::string item = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || item.empty() || !(v > 0))
+      throw std::invalid_argument(option + " takes positive numbers separated by commas, got \"" + list + "\"");
+    out.push_back(v);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+// JasPer-style "-O key=value" options, mapped onto ours (JasPer's rate is a fraction of the
+// uncompressed size; numrlvls counts resolutions, one more than decomposition levels).
+struct JasperOptions {
+  std::vector<double> rates;  // ilyrrates..., rate
+  std::optional<int> levels, tile_width, tile_height, cblk_width, cblk_height;
+  std::optional<bool> lossless;
+  std::optional<std::string> order;
+};
+
+JasperOptions parse_jasper(const std::vector<std::string>& items) {
+  JasperOptions j;
+  std::vector<double> intermediate;
+  std::optional<double> rate;
+  for (const std::string& item : items) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos) throw std::invalid_argument("-O takes key=value, got \"" + item + "\"");
+    const std::string key = item.substr(0, eq), value = item.substr(eq + 1);
+    auto integer = [&] {
+      const auto v = parse_numbers(value, "-O " + key);
+      if (v.size() != 1 || v[0] != std::floor(v[0])) throw std::invalid_argument("-O " + key + " takes one integer");
+      return static_cast<int>(v[0]);
+    };
+    if (key == "rate") rate = parse_numbers(value, "-O rate").at(0);
+    else if (key == "ilyrrates") intermediate = parse_numbers(value, "-O ilyrrates");
+    else if (key == "numrlvls") j.levels = integer() - 1;
+    else if (key == "mode") {
+      if (value != "int" && value != "real") throw std::invalid_argument("-O mode takes int or real");
+      j.lossless = value == "int";
+    } else if (key == "tilewidth") j.tile_width = integer();
+    else if (key == "tileheight") j.tile_height = integer();
+    else if (key == "cblkwidth") j.cblk_width = integer();
+    else if (key == "cblkheight") j.cblk_height = integer();
+    else if (key == "prg") {
+      std::string upper = value;
+      for (auto& ch : upper) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+      j.order = upper;
+    } else throw std::invalid_argument("unknown -O option '" + key + "' (rate, numrlvls, mode, tilewidth, tileheight, cblkwidth, cblkheight, prg, ilyrrates)");
+  }
+  if (!intermediate.empty() && !rate) throw std::invalid_argument("-O ilyrrates needs -O rate for the last layer");
+  j.rates = intermediate;
+  if (rate) j.rates.push_back(*rate);
+  return j;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"j2kenc: JPEG 2000 encoder (reversible 5/3 lossless path)\n\n"
+  CLI::App app{"j2kenc: JPEG 2000 encoder. Lossy 9/7 (on the GPU when one is there) unless --lossless.\n\n"
                "Examples:\n"
-               "  j2kenc -i photo.png -o photo.jp2 --lossless\n"
+               "  j2kenc -i photo.png -o photo.jp2 --rate 0.75          # 0.75 bits per pixel over all components\n"
+               "  j2kenc -i photo.png -o photo.j2k --ratio 40,20,10     # three quality layers, OpenJPEG-style ratios\n"
+               "  j2kenc -i photo.png -o photo.j2k --psnr 32,38 --dwt gpu\n"
+               "  j2kenc -i photo.png -o photo.jp2 -O rate=0.05 -O numrlvls=6   # JasPer-style options\n"
                "  j2kenc -i scan.pgm -o scan.j2k --lossless --tile 512x512 --order RPCL --precincts 128x128,64x64\n"};
   std::string input, output, tile, tile_origin, origin, codeblock = "64x64", precincts, order = "LRCP", modes, comment;
+  std::string rate, ratio, psnr, dwt = "auto";
+  std::vector<std::string> jasper;
+  double size = 0, base_step = 1.0 / 512;
   bool lossless = false, sop = false, eph = false, quiet = false;
-  int levels = 5, threads = 0, guard_bits = 2;
+  int levels = 5, threads = 0, guard_bits = -1;
   app.add_option("-i,--input", input, "input image (PNG, PNM, TIFF, BMP, JPEG, ...)")->required();
   app.add_option("-o,--output", output, "output: .j2k/.j2c/.jpc codestream or .jp2 file")->required();
   app.add_flag("--lossless", lossless, "reversible 5/3 wavelet and RCT, every bit kept");
@@ -77,7 +152,14 @@ int main(int argc, char** argv) {
   app.add_flag("--sop", sop, "SOP marker before every packet");
   app.add_flag("--eph", eph, "EPH marker after every packet header");
   app.add_option("--modes", modes, "code-block mode switches: bypass,reset,termall,vcausal,pterm,segsym");
-  app.add_option("--guard-bits", guard_bits, "guard bits (default 2)");
+  app.add_option("--rate", rate, "lossy: bits per pixel over all components, one per quality layer (BPP[,BPP...])");
+  app.add_option("--ratio", ratio, "lossy: compression ratios as opj_compress -r, one per layer (R[,R...], decreasing)");
+  app.add_option("--psnr", psnr, "lossy: PSNR targets in dB, one per layer (DB[,DB...])");
+  app.add_option("--size", size, "lossy: whole-file size in bytes");
+  app.add_option("--dwt", dwt, "where the 9/7 DWT runs: cpu, gpu or auto (default auto: GPU if a context can be made)");
+  app.add_option("--base-step", base_step, "lossy: quantisation step relative to the sample range (default 1/512)");
+  app.add_option("-O", jasper, "JasPer-style option key=value: rate, numrlvls, mode=int|real, tilewidth, tileheight, cblkwidth, cblkheight, prg, ilyrrates");
+  app.add_option("--guard-bits", guard_bits, "guard bits (default 2 lossless, 1 lossy)");
   app.add_option("--comment", comment, "COM marker text (default: the encoder's name)");
   app.add_option("--threads", threads, "worker threads (default: all hardware threads)");
   app.add_flag("-q,--quiet", quiet, "no summary line");
@@ -96,10 +178,21 @@ int main(int argc, char** argv) {
     if (ext == ".jp2") format = codec::FileFormat::Jp2;
     else if (ext == ".j2k" || ext == ".j2c" || ext == ".jpc") format = codec::FileFormat::Codestream;
     else throw std::invalid_argument(output + ": unknown output type (use .jp2, .j2k, .j2c or .jpc)");
-    if (!lossless) throw std::invalid_argument("lossy coding is not available yet; pass --lossless");
+    const JasperOptions jo = parse_jasper(jasper);
+    if (jo.lossless) lossless = lossless || *jo.lossless;
+    if (jo.levels) levels = *jo.levels;
+    if (jo.order) order = *jo.order;
+    const int targets_given = !rate.empty() + !ratio.empty() + !psnr.empty() + (size > 0) + !jo.rates.empty();
+    if (targets_given > 1) throw std::invalid_argument("give one of --rate, --ratio, --psnr, --size and -O rate");
+    if (lossless && targets_given) throw std::invalid_argument("rate and quality targets need lossy coding (drop --lossless)");
 
     codec::EncodeParams params;
     params.lossless = lossless;
+    params.base_step = base_step;
+    if (dwt == "cpu") params.dwt = codec::DwtDevice::Cpu;
+    else if (dwt == "gpu") params.dwt = codec::DwtDevice::Gpu;
+    else if (dwt == "auto") params.dwt = codec::DwtDevice::Auto;
+    else throw std::invalid_argument("--dwt takes cpu, gpu or auto, got \"" + dwt + "\"");
     params.levels = levels;
     params.threads = threads;
     params.guard_bits = guard_bits;
@@ -118,6 +211,10 @@ int main(int argc, char** argv) {
       for (const auto& [w, h] : cli::parse_size_list(precincts, "--precincts", 1 << 20))
         params.precincts.emplace_back(static_cast<int>(w), static_cast<int>(h));
     if (params.tile_width == 0 && !tile.empty()) throw std::invalid_argument("--tile sizes must be positive");
+    if (jo.tile_width) params.tile_width = *jo.tile_width;
+    if (jo.tile_height) params.tile_height = *jo.tile_height;
+    if (jo.cblk_width) params.codeblock_width = *jo.cblk_width;
+    if (jo.cblk_height) params.codeblock_height = *jo.cblk_height;
     codec::validate(params);  // before reading: option errors should not wait for a large image
 
     const auto t0 = std::chrono::steady_clock::now();
@@ -125,12 +222,36 @@ int main(int argc, char** argv) {
       const cli::QuietStderr quiet_libraries;
       return codec::to_source_image(imageio::read_image(input), input);
     }();
-    const std::vector<std::uint8_t> bytes = codec::encode(image, params, format);
+    // Byte targets depend on the image: bits per pixel over all components (Kakadu's --rate),
+    // OpenJPEG's ratios of the raw size, JasPer's fractions of it.
+    const double pixels = static_cast<double>(image.width) * image.height;
+    double raw_bytes = 0;
+    for (const auto& c : image.components) raw_bytes += pixels * c.precision / 8.0;
+    auto add_bytes = [&](double bytes) { params.layers.push_back({codec::LayerTarget::Kind::Bytes, std::floor(bytes)}); };
+    if (!rate.empty())
+      for (double bpp : parse_numbers(rate, "--rate")) add_bytes(bpp * pixels / 8.0);
+    if (!ratio.empty()) {
+      auto ratios = parse_numbers(ratio, "--ratio");
+      std::sort(ratios.begin(), ratios.end(), std::greater<>());  // largest ratio = smallest layer first
+      for (double r : ratios) add_bytes(raw_bytes / r);
+    }
+    for (double r : jo.rates) add_bytes(r * raw_bytes);
+    if (size > 0) add_bytes(size);
+    if (!psnr.empty())
+      for (double db : parse_numbers(psnr, "--psnr")) params.layers.push_back({codec::LayerTarget::Kind::Psnr, db});
+    codec::validate(params);
+
+    codec::EncodeReport report;
+    const std::vector<std::uint8_t> bytes = codec::encode(image, params, format, &report);
+    if (!quiet)
+      for (const auto& notice : report.notices) std::fprintf(stderr, "j2kenc: note: %s\n", notice.c_str());
     imageio::write_bytes_atomically(output, bytes);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (!quiet)
-      std::fprintf(stderr, "j2kenc: %s -> %s: %dx%d, %zu components, %zu bytes, %.1f ms\n", input.c_str(), output.c_str(),
-                   image.width, image.height, image.components.size(), bytes.size(), ms);
+      std::fprintf(stderr, "j2kenc: %s -> %s: %dx%d, %zu components, %zu bytes (%.4f bpp), %.1f ms, DWT on %s\n",
+                   input.c_str(), output.c_str(), image.width, image.height, image.components.size(), bytes.size(),
+                   8.0 * static_cast<double>(bytes.size()) / (static_cast<double>(image.width) * image.height), ms,
+                   report.dwt_backend.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "j2kenc: %s\n", cli::one_line(e.what()).c_str());
     return 1;

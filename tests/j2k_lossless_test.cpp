@@ -39,8 +39,10 @@ void write_file(const fs::path& p, const std::vector<std::uint8_t>& bytes) {
 codec::SourceImage to_source(const imageio::Image& img) { return codec::to_source_image(img, "generated"); }
 
 // Decodes `file` with `tool` into a PNG (which keeps 8/16 bits and alpha) and returns its samples.
-imageio::Image decode_with(const std::string& tool, const fs::path& file, const fs::path& out) {
-  const std::string cmd = tool + " -i '" + file.string() + "' -o '" + out.string() + "' >'" + out.string() + ".log' 2>&1";
+imageio::Image decode_with(const std::string& tool, const fs::path& file, const fs::path& out,
+                           const std::string& extra = "") {
+  const std::string cmd = tool + " -i '" + file.string() + "' -o '" + out.string() + "' " + extra + " >'" +
+                          out.string() + ".log' 2>&1";
   if (std::system(cmd.c_str()) != 0) {
     std::ifstream log(out.string() + ".log");
     std::stringstream ss;
@@ -56,8 +58,9 @@ struct Case {
   codec::EncodeParams params;
   codec::FileFormat format = codec::FileFormat::Codestream;
   // opj_compress options that encode the same tiling. Grok 10.0.5 (Debian 12) mis-decodes some
-  // tilings whatever encoder wrote them (tiles at odd vertical positions with 3 or more levels);
-  // for those, Grok's output of our stream must equal its output of OpenJPEG's stream.
+  // tilings whatever encoder wrote them (tiles at odd vertical positions with several levels), and
+  // its wrong output even varies with its thread count; for those, Grok's single-threaded output
+  // of our stream must equal its single-threaded output of OpenJPEG's stream.
   std::string opj_equivalent;
 };
 
@@ -92,8 +95,9 @@ void check_lossless(const Case& c) {
       const std::string cmd = "opj_compress -i '" + source.string() + "' -o '" +
                               (scratch.dir / "opj.j2k").string() + "' " + c.opj_equivalent + " >/dev/null 2>&1";
       ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
-      const imageio::Image grok_of_opj = decode_with(tool, scratch.dir / "opj.j2k", scratch.dir / "grk_opj.png");
-      EXPECT_EQ(decoded.pixels, grok_of_opj.pixels) << "Grok decodes our stream differently from OpenJPEG's equivalent";
+      const imageio::Image grok_of_ours = decode_with(tool, file, scratch.dir / "grk_ours.png", "-H 1");
+      const imageio::Image grok_of_opj = decode_with(tool, scratch.dir / "opj.j2k", scratch.dir / "grk_opj.png", "-H 1");
+      EXPECT_EQ(grok_of_ours.pixels, grok_of_opj.pixels) << "Grok decodes our stream differently from OpenJPEG's equivalent";
       std::printf("note: %s: grk_decompress mis-decodes this tiling for OpenJPEG's stream too; outputs identical\n",
                   c.name.c_str());
       continue;

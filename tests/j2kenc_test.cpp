@@ -94,6 +94,19 @@ TEST_F(J2kencCli, ReadsBmpTiffAndPnmInputs) {
   }
 }
 
+TEST_F(J2kencCli, LossyRateTargetsThroughTheCommandLine) {
+  for (const std::string opts : {"--rate 1.5", "--ratio 16", "-O rate=0.0625", "--size 225", "--rate 0.5,1.5 --dwt gpu"}) {
+    SCOPED_TRACE(opts);
+    const fs::path out = dir / "x.j2k";
+    const auto r = j2kenc("-i '" + rgb.string() + "' -o '" + out.string() + "' " + opts, dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // 40x30 pixels: 1.5 bpp over all components is 225 bytes, as is ratio 16 of 3600 raw bytes.
+    EXPECT_LE(fs::file_size(out), 225u);
+    EXPECT_GE(fs::file_size(out), 200u);
+    EXPECT_EQ(std::system(("opj_decompress -i '" + out.string() + "' -o '" + (dir / "x.ppm").string() + "' >/dev/null 2>&1").c_str()), 0);
+  }
+}
+
 TEST_F(J2kencCli, BadInputGetsOneLine) {
   const std::string in = " -i '" + rgb.string() + "' ";
   expect_one_line_failure("-i '" + (dir / "missing.png").string() + "' --lossless", "missing.png");
@@ -120,7 +133,13 @@ TEST_F(J2kencCli, BadInputGetsOneLine) {
   expect_one_line_failure(in + "--lossless --levels 40", "levels");
   expect_one_line_failure(in + "--lossless --tile 0x8", "tile");
   expect_one_line_failure(in + "--lossless --origin 1", "--origin");
-  expect_one_line_failure(in, "lossless");
+  expect_one_line_failure(in + "--lossless --rate 1", "lossy");
+  expect_one_line_failure(in + "--rate 1 --psnr 30", "one of");
+  expect_one_line_failure(in + "--rate 0.5,abc", "--rate");
+  expect_one_line_failure(in + "--rate 2,1", "increase");
+  expect_one_line_failure(in + "--dwt tpu", "--dwt");
+  expect_one_line_failure(in + "-O speed=1", "-O");
+  expect_one_line_failure(in + "--size 10", "headers alone");
   // An unknown output type is refused before anything is written.
   const ProcessResult r = j2kenc("-i '" + rgb.string() + "' -o '" + (dir / "x.png").string() + "' --lossless", dir);
   EXPECT_EQ(r.exit_code, 1);

@@ -9,13 +9,19 @@
 #include "codec/structure/error.h"
 #include "codec/tier2/packet_writer.h"
 #include "codec/tier2/progression.h"
+#include "codec/rate/pcrd.h"
+#include "codec/rate/rate_allocator.h"
 #include "dwt_cpu/cpu_backend.h"
+#include "dwt_gpu/gpu_backend.h"
+
+#include <cmath>
+#include <memory>
 
 namespace codec {
 namespace {
 
 cs::MainHeader main_header(const SourceImage& image, const EncodeParams& params, const CodingPlan& plan,
-                           const std::vector<int>& guard_bits) {
+                           const std::vector<int>& guard_bits, int layers) {
   cs::MainHeader h;
   const ImageGrid& g = plan.grid;
   h.siz.xsiz = static_cast<std::uint64_t>(g.image.x1);
@@ -32,14 +38,14 @@ cs::MainHeader main_header(const SourceImage& image, const EncodeParams& params,
   h.cod.sop = params.sop;
   h.cod.eph = params.eph;
   h.cod.order = static_cast<cs::ProgressionOrder>(static_cast<int>(params.order));
-  h.cod.layers = 1;
-  h.cod.mct = plan.rct;
+  h.cod.layers = static_cast<unsigned>(layers);
+  h.cod.mct = plan.rct || plan.ict;
   const CodingStyle& style = plan.styles[0];
   h.cod.style.levels = static_cast<unsigned>(style.levels);
   h.cod.style.xcb = static_cast<unsigned>(style.xcb);
   h.cod.style.ycb = static_cast<unsigned>(style.ycb);
   h.cod.style.block_style = params.block_style.to_spcod();
-  h.cod.style.transform = cs::WaveletTransform::Reversible5x3;
+  h.cod.style.transform = params.lossless ? cs::WaveletTransform::Reversible5x3 : cs::WaveletTransform::Irreversible9x7;
   if (style.explicit_precincts())
     for (int r = 0; r <= style.levels; ++r) {
       const auto [ppx, ppy] = style.precinct(r);
@@ -49,8 +55,11 @@ cs::MainHeader main_header(const SourceImage& image, const EncodeParams& params,
   auto quantization = [&](std::size_t c) {
     cs::Quantization q;
     q.guard_bits = static_cast<unsigned>(guard_bits[c]);
-    q.style = cs::QuantizationStyle::None;
-    for (int e : plan.quantization[c].exponents) q.steps.push_back(cs::StepSize{static_cast<unsigned>(e), 0});
+    const ComponentQuantization& cq = plan.quantization[c];
+    q.style = params.lossless ? cs::QuantizationStyle::None : cs::QuantizationStyle::ScalarExpounded;
+    for (std::size_t b = 0; b < cq.exponents.size(); ++b)
+      q.steps.push_back(cs::StepSize{static_cast<unsigned>(cq.exponents[b]),
+                                     params.lossless ? 0u : static_cast<unsigned>(cq.mantissas[b])});
     return q;
   };
   h.qcd = quantization(0);
@@ -67,18 +76,22 @@ cs::MainHeader main_header(const SourceImage& image, const EncodeParams& params,
 
 t2::Order to_t2(Progression p) { return static_cast<t2::Order>(static_cast<int>(p)); }
 
-// Tier-2: every packet of the tile in progression order, one quality layer holding every pass.
-std::vector<std::uint8_t> tile_body(CodedTile& coded, const EncodeParams& params, const std::vector<int>& plan_guard,
-                                    const std::vector<int>& final_guard) {
-  Tile& tile = coded.tile;
-  // Express missing bit-planes against the guard bits the header states.
-  for (const TileComponent& tc : tile.components)
+// Express missing bit-planes against the guard bits the header states.
+void apply_guard_bits(CodedTile& coded, const std::vector<int>& plan_guard, const std::vector<int>& final_guard) {
+  for (const TileComponent& tc : coded.tile.components)
     for (const Resolution& res : tc.resolutions)
       for (const Precinct& p : res.precincts)
         for (const PrecinctBand& pb : p.bands)
           for (const CodeBlock& cb : pb.blocks)
             coded.blocks[cb.index].missing_msbs += final_guard[static_cast<std::size_t>(tc.component)] -
                                                    plan_guard[static_cast<std::size_t>(tc.component)];
+}
+
+// Tier-2: every packet of the tile in progression order. `passes[b]` lists block b's cumulative
+// passes after each layer.
+std::vector<std::uint8_t> tile_body(const CodedTile& coded, const EncodeParams& params,
+                                    const std::vector<std::vector<int>>& passes, int layers) {
+  const Tile& tile = coded.tile;
 
   std::vector<t2::ComponentGeometry> geometry;
   // One packet writer per precinct, in (component, resolution, precinct) order.
@@ -98,7 +111,7 @@ std::vector<std::uint8_t> tile_body(CodedTile& coded, const EncodeParams& params
           band.rows = pb.rows;
           for (const CodeBlock& cb : pb.blocks) {
             const t1::EncodedBlock& eb = coded.blocks[cb.index];
-            band.blocks.push_back(t2::CodeBlockCoding{&eb, {static_cast<int>(eb.passes.size())}});
+            band.blocks.push_back(t2::CodeBlockCoding{&eb, passes[cb.index]});
           }
           bands.push_back(std::move(band));
         }
@@ -110,17 +123,45 @@ std::vector<std::uint8_t> tile_body(CodedTile& coded, const EncodeParams& params
   std::vector<std::uint8_t> body;
   std::uint16_t sequence = 0;
   for (const t2::PacketId& id :
-       t2::progression(to_t2(params.order), 1, tile.rect.x0, tile.rect.y0, tile.rect.x1, tile.rect.y1, geometry))
+       t2::progression(to_t2(params.order), layers, tile.rect.x0, tile.rect.y0, tile.rect.x1, tile.rect.y1, geometry))
     writers[static_cast<std::size_t>(id.component)][static_cast<std::size_t>(id.resolution)][static_cast<std::size_t>(id.precinct)]
         .write_packet(id.layer, params.sop, params.eph, sequence++, body);
   return body;
 }
 
+struct DwtChoice {
+  std::unique_ptr<dwt::DwtBackend> backend;
+  std::string name;
+};
+
+DwtChoice choose_dwt(const EncodeParams& params, EncodeReport& report) {
+  if (params.lossless || params.dwt == DwtDevice::Cpu) {
+    auto cpu = std::make_unique<dwt_cpu::CpuBackend>(params.threads);
+    std::string name = cpu->name();
+    return {std::move(cpu), name};
+  }
+  try {
+    auto gpu = std::make_unique<dwt_gpu::GpuBackend>(glc::Platform::Auto, true);
+    std::string name = "gpu fragment shaders (" + gpu->renderer() + ")";
+    return {std::move(gpu), name};
+  } catch (const std::exception& e) {
+    if (params.dwt == DwtDevice::Gpu) throw EncodeError(std::string("--dwt gpu: ") + e.what());
+    auto cpu = std::make_unique<dwt_cpu::CpuBackend>(params.threads);
+    report.notices.push_back("no GPU context (" + std::string(e.what()) + "); the 9/7 DWT runs on the CPU");
+    std::string name = cpu->name();
+    return {std::move(cpu), name};
+  }
+}
+
 }  // namespace
 
-std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& params, FileFormat format) {
+std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& params, FileFormat format,
+                                 EncodeReport* report_out) {
+  EncodeReport report;
   const CodingPlan plan = make_plan(image, params);
-  dwt_cpu::CpuBackend dwt(params.threads);
+  DwtChoice dwt = choose_dwt(params, report);
+  report.dwt_backend = dwt.name;
+  dwt_cpu::CpuBackend reversible_dwt(params.threads);
   dwt_cpu::ThreadPool pool(params.threads);
 
   std::vector<CodedTile> tiles;
@@ -130,20 +171,101 @@ std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& p
   for (const auto& q : plan.quantization) plan_guard.push_back(q.guard_bits);
   final_guard = plan_guard;
   for (int t = 0; t < count; ++t) {
-    tiles.push_back(code_tile(image, plan, params, t, dwt, pool));
+    tiles.push_back(code_tile(image, plan, params, t, *dwt.backend, reversible_dwt, pool));
     for (std::size_t c = 0; c < final_guard.size(); ++c)
       final_guard[c] = std::max(final_guard[c], tiles.back().guard_bits_needed[c]);
   }
+  for (CodedTile& tile : tiles) apply_guard_bits(tile, plan_guard, final_guard);
 
-  const cs::MainHeader header = main_header(image, params, plan, final_guard);
-  cs::CodestreamWriter writer(header);
-  for (CodedTile& tile : tiles) {
-    const auto body = tile_body(tile, params, plan_guard, final_guard);
-    writer.add_tile_part(static_cast<unsigned>(tile.tile.index), 0, 1, body);
+  const int layers = params.layers.empty() ? 1 : static_cast<int>(params.layers.size());
+  // Cumulative passes per layer for every block of every tile; by default everything in layer 0.
+  std::vector<std::vector<std::vector<int>>> passes(tiles.size());
+  for (std::size_t t = 0; t < tiles.size(); ++t)
+    for (const auto& eb : tiles[t].blocks) passes[t].push_back(std::vector<int>(static_cast<std::size_t>(layers), static_cast<int>(eb.passes.size())));
+
+  const cs::MainHeader header = main_header(image, params, plan, final_guard, layers);
+  auto assemble = [&]() {
+    cs::CodestreamWriter writer(header);
+    for (std::size_t t = 0; t < tiles.size(); ++t)
+      writer.add_tile_part(static_cast<unsigned>(tiles[t].tile.index), 0, 1, tile_body(tiles[t], params, passes[t], layers));
+    std::vector<std::uint8_t> codestream = writer.finish();
+    if (format == FileFormat::Jp2) return cs::wrap_jp2(codestream, cs::jp2_header_for(header.siz));
+    return codestream;
+  };
+
+  if (!params.layers.empty()) {
+    // Rate control over every block of the image: one slope threshold per layer (PCRD-opt).
+    std::vector<std::vector<rate::HullPoint>> hulls;
+    double energy = 0;
+    for (const CodedTile& tile : tiles)
+      for (std::size_t b = 0; b < tile.blocks.size(); ++b) {
+        hulls.push_back(rate::convex_hull(tile.blocks[b].passes, tile.block_weights[b]));
+        for (const auto& p : tile.blocks[b].passes) energy += p.distortion_decrease * tile.block_weights[b];
+      }
+    const rate::RateAllocator allocator(hulls);
+    auto apply = [&](const std::vector<std::vector<int>>& per_layer) {  // [layer][global block]
+      std::size_t g = 0;
+      for (std::size_t t = 0; t < tiles.size(); ++t)
+        for (std::size_t b = 0; b < tiles[t].blocks.size(); ++b, ++g)
+          for (int l = 0; l < layers; ++l) {
+            passes[t][b][static_cast<std::size_t>(l)] = per_layer[static_cast<std::size_t>(l)][g];
+          }
+    };
+    std::size_t samples = 0;
+    int peak_bits = 0;
+    for (const SourceComponent& c : image.components) {
+      samples += c.samples.size();
+      peak_bits = std::max(peak_bits, c.precision);
+    }
+    const double peak = std::ldexp(1.0, peak_bits) - 1;
+    if (params.layers[0].kind == LayerTarget::Kind::Psnr) {
+      std::vector<std::vector<int>> per_layer;
+      for (const LayerTarget& t : params.layers) {
+        const double max_distortion = static_cast<double>(samples) * peak * peak * std::pow(10.0, -t.value / 10.0);
+        per_layer.push_back(allocator.for_distortion(energy, max_distortion).passes);
+      }
+      for (std::size_t l = 1; l < per_layer.size(); ++l)
+        for (std::size_t g = 0; g < per_layer[l].size(); ++g) per_layer[l][g] = std::max(per_layer[l][g], per_layer[l - 1][g]);
+      apply(per_layer);
+    } else {
+      // Byte targets for the whole file: headers and packet headers included. Bisect a common
+      // scale of the data budgets until the file fits its last target, as full as it gets.
+      const auto target = static_cast<std::size_t>(params.layers.back().value);
+      std::vector<std::vector<int>> none(static_cast<std::size_t>(layers), std::vector<int>(hulls.size(), 0));
+      apply(none);
+      const std::size_t overhead = assemble().size();
+      if (overhead > target)
+        throw EncodeError("the byte target " + std::to_string(target) + " is below the " + std::to_string(overhead) +
+                          " bytes the headers alone take");
+      auto plan_for = [&](double scale) {
+        std::vector<std::size_t> budgets;
+        for (const LayerTarget& t : params.layers)
+          budgets.push_back(static_cast<std::size_t>(std::max(0.0, (t.value - static_cast<double>(overhead)) * scale)));
+        return rate::layer_passes(hulls, budgets);
+      };
+      // Packet headers grow with the data, so the scale ends a little below 1; stop once the file is
+      // within a quarter of the 0.5 % the target allows.
+      double lo = 0, hi = 1.05;
+      std::vector<std::vector<int>> best = none;
+      std::size_t best_size = overhead;
+      for (int iteration = 0; iteration < 30 && best_size < target - target / 800; ++iteration) {
+        const double mid = 0.5 * (lo + hi);
+        const auto candidate = plan_for(mid);
+        apply(candidate);
+        const std::size_t size = assemble().size();
+        if (size <= target) {
+          lo = mid;
+          if (size >= best_size) best_size = size, best = candidate;
+        } else {
+          hi = mid;
+        }
+      }
+      apply(best);
+    }
   }
-  std::vector<std::uint8_t> codestream = writer.finish();
-  if (format == FileFormat::Jp2) return cs::wrap_jp2(codestream, cs::jp2_header_for(header.siz));
-  return codestream;
+  std::vector<std::uint8_t> bytes = assemble();
+  if (report_out) *report_out = std::move(report);
+  return bytes;
 }
 
 }  // namespace codec

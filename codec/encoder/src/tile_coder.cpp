@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdlib>
 #include <string>
 
 #include "codec/encoder/component_transform.h"
+#include "codec/encoder/quantization.h"
+#include "dwt/norms.h"
 #include "codec/structure/error.h"
 
 namespace codec {
@@ -68,29 +71,55 @@ CodingPlan make_plan(const SourceImage& image, const EncodeParams& params) {
   const std::size_t nc = image.components.size();
   plan.sampling.assign(nc, ComponentSampling{});
   plan.styles.assign(nc, style);
-  plan.rct = params.lossless && nc >= 3 && image.components[0].precision == image.components[1].precision &&
-             image.components[1].precision == image.components[2].precision &&
-             image.components[0].is_signed == image.components[1].is_signed &&
-             image.components[1].is_signed == image.components[2].is_signed;
+  const bool colour = nc >= 3 && image.components[0].precision == image.components[1].precision &&
+                      image.components[1].precision == image.components[2].precision &&
+                      image.components[0].is_signed == image.components[1].is_signed &&
+                      image.components[1].is_signed == image.components[2].is_signed;
+  plan.rct = params.lossless && colour;
+  plan.ict = !params.lossless && colour;
+  // Squared error in Y, Cb, Cr reaches R, G and B through the inverse ICT's columns (T.800 G-10).
+  const double ict_weight[3] = {3.0, 0.34413 * 0.34413 + 1.772 * 1.772, 1.402 * 1.402 + 0.71414 * 0.71414};
+  const dwt::Kernel& kernel97 = dwt::get_kernel(dwt::KernelId::Irreversible97);
   for (std::size_t c = 0; c < nc; ++c) {
     ComponentQuantization q;
     q.precision = image.components[c].precision + ((plan.rct && (c == 1 || c == 2)) ? 1 : 0);
-    q.guard_bits = params.guard_bits;
-    for (BandOrientation o : qcd_order(params.levels)) q.exponents.push_back(q.precision + band_gain(o));
+    q.guard_bits = params.guard_bits >= 0 ? params.guard_bits : (params.lossless ? 2 : 1);
+    if (plan.ict && c < 3) q.component_weight = ict_weight[c];
+    int level = params.levels;  // LL first, then each level's three bands from the coarsest
+    int in_level = 0;
+    for (BandOrientation o : qcd_order(params.levels)) {
+      const int range = q.precision + band_gain(o);  // R_b of E-3
+      if (params.lossless) {
+        q.exponents.push_back(range);
+        continue;
+      }
+      const double norm = params.levels == 0 ? 1.0 : dwt::synthesis_norm(kernel97, std::max(level, 1), static_cast<dwt::Orientation>(static_cast<int>(o)));
+      const StepSize step = encode_step(params.base_step * std::ldexp(1.0, q.precision) / norm, range);
+      q.exponents.push_back(step.exponent);
+      q.mantissas.push_back(step.mantissa);
+      q.steps.push_back(step_value(step, range));
+      q.norms.push_back(norm);
+      if (o != BandOrientation::LL && ++in_level == 3) {
+        in_level = 0;
+        --level;
+      }
+    }
     plan.quantization.push_back(std::move(q));
   }
   return plan;
 }
 
 CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params, int tile_index,
-                    dwt::DwtBackend& dwt, dwt_cpu::ThreadPool& pool) {
+                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool) {
   CodedTile coded;
   coded.tile = build_tile(plan.grid, plan.sampling, plan.styles, tile_index);
   Tile& tile = coded.tile;
   const std::size_t nc = tile.components.size();
 
-  // Samples of each tile-component, level shifted.
+  // Samples of each tile-component, level shifted; then the component transform and the DWT into
+  // the Mallat layout; lossy planes are quantised band by band into the same integer layout.
   std::vector<std::vector<std::int32_t>> planes(nc);
+  std::vector<std::vector<float>> float_planes(params.lossless ? 0 : nc);
   for (std::size_t c = 0; c < nc; ++c) {
     const TileComponent& tc = tile.components[c];
     const auto w = static_cast<std::size_t>(tc.rect.width()), h = static_cast<std::size_t>(tc.rect.height());
@@ -103,20 +132,38 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
                   planes[c].begin() + static_cast<std::ptrdiff_t>(y * w));
     }
     if (!src.is_signed) dc_shift_forward(planes[c], src.precision);
+    if (!params.lossless) float_planes[c].assign(planes[c].begin(), planes[c].end());
   }
   if (plan.rct) rct_forward(planes[0], planes[1], planes[2]);
+  if (plan.ict) ict_forward(float_planes[0], float_planes[1], float_planes[2]);
 
-  // Wavelet transform of each tile-component, in place into the Mallat layout.
   for (std::size_t c = 0; c < nc; ++c) {
     const TileComponent& tc = tile.components[c];
     if (tc.rect.empty()) continue;
+    const int w = static_cast<int>(tc.rect.width()), h = static_cast<int>(tc.rect.height());
     dwt::DwtParams p;
-    p.kernel = dwt::KernelId::Reversible53;
+    p.kernel = params.lossless ? dwt::KernelId::Reversible53 : dwt::KernelId::Irreversible97;
     p.boundary = dwt::Boundary::Symmetric;
     p.levels = tc.levels;
     p.origin = dwt::Origin{tc.rect.x0, tc.rect.y0};
     p.levels_may_exceed_size = true;
-    dwt.forward(dwt::make_span(planes[c].data(), static_cast<int>(tc.rect.width()), static_cast<int>(tc.rect.height())), p);
+    if (params.lossless) {
+      reversible_dwt.forward(dwt::make_span(planes[c].data(), w, h), p);
+      continue;
+    }
+    dwt.forward(dwt::make_span(float_planes[c].data(), w, h), p);
+    const ComponentQuantization& q = plan.quantization[c];
+    int band_index = 0;
+    for (const Resolution& res : tc.resolutions)
+      for (const Subband& b : res.bands) {
+        const auto inverse_step = static_cast<float>(1.0 / q.steps[static_cast<std::size_t>(band_index++)]);
+        for (int y = 0; y < b.layout.height; ++y) {
+          const std::size_t row = static_cast<std::size_t>(b.layout.y + y) * static_cast<std::size_t>(w) +
+                                  static_cast<std::size_t>(b.layout.x);
+          for (int x = 0; x < b.layout.width; ++x)
+            planes[c][row + static_cast<std::size_t>(x)] = quantize(float_planes[c][row + static_cast<std::size_t>(x)], inverse_step);
+        }
+      }
   }
 
   // Guard bits: each component's coefficients must fit Mb = G + exponent - 1 magnitude bits.
@@ -146,6 +193,7 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
     const Subband* band;
     const CodeBlock* block;
     int exponent;
+    int band_index;  // QCD order
   };
   std::vector<Job> jobs;
   for (std::size_t c = 0; c < nc; ++c) {
@@ -156,10 +204,12 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
         for (const PrecinctBand& pb : p.bands)
           for (const CodeBlock& cb : pb.blocks)
             jobs.push_back(Job{c, &res.bands[static_cast<std::size_t>(pb.band)], &cb,
-                               plan.quantization[c].exponents[static_cast<std::size_t>(first_band_index + pb.band)]});
+                               plan.quantization[c].exponents[static_cast<std::size_t>(first_band_index + pb.band)],
+                               first_band_index + pb.band});
     }
   }
   coded.blocks.resize(tile.code_blocks);
+  coded.block_weights.assign(tile.code_blocks, 1.0);
   pool.parallel_for(jobs.size(), [&](std::size_t i) {
     const Job& job = jobs[i];
     const TileComponent& tc = tile.components[job.component];
@@ -177,6 +227,10 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
                                            params.block_style);
     eb.missing_msbs -= guard - q.guard_bits;  // expressed against the plan's guard bits for now
     coded.blocks[job.block->index] = std::move(eb);
+    if (!params.lossless) {
+      const double step = q.steps[static_cast<std::size_t>(job.band_index)], norm = q.norms[static_cast<std::size_t>(job.band_index)];
+      coded.block_weights[job.block->index] = step * step * norm * norm * q.component_weight;
+    }
   });
   return coded;
 }

@@ -10,8 +10,25 @@ namespace codec {
 
 enum class Progression { LRCP = 0, RLCP = 1, RPCL = 2, PCRL = 3, CPRL = 4 };
 
+// Where the irreversible 9/7 transform runs. Auto: the GPU when a GL context can be made, else the
+// CPU (with a notice). The reversible 5/3 always runs on the CPU.
+enum class DwtDevice { Cpu, Gpu, Auto };
+
+// One quality layer's target. Exactly one kind is used per encode.
+struct LayerTarget {
+  enum class Kind { Bytes, Psnr } kind = Kind::Bytes;
+  double value = 0;  // bytes of the whole file, or PSNR in dB
+};
+
 struct EncodeParams {
-  bool lossless = true;               // reversible 5/3 + RCT; the lossy path arrives with issue 4
+  bool lossless = true;               // reversible 5/3 + RCT; otherwise irreversible 9/7 + ICT
+  DwtDevice dwt = DwtDevice::Auto;
+  // Lossy: quantisation step of the image-domain error, relative to the sample range 2^precision;
+  // each subband's step is this divided by its synthesis norm, so every band costs the same
+  // squared error per unit of index error and rate control compares them directly.
+  double base_step = 1.0 / 512;
+  // Lossy: quality layers, increasing. Empty: one layer keeping every coded pass.
+  std::vector<LayerTarget> layers;
   int levels = 5;                     // decomposition levels NL (0..32)
   std::int64_t image_x0 = 0, image_y0 = 0;  // XOsiz, YOsiz: where the image sits on the reference grid
   std::int64_t tile_width = 0, tile_height = 0;  // 0: one tile covering the image
@@ -23,7 +40,7 @@ struct EncodeParams {
   Progression order = Progression::LRCP;
   bool sop = false, eph = false;
   t1::BlockStyle block_style{};
-  int guard_bits = 2;
+  int guard_bits = -1;                // -1: 2 for lossless, 1 for lossy
   int threads = 0;                    // 0: all hardware threads
   std::string comment = "Created by gpuj2k";
 };

@@ -11,13 +11,18 @@
 
 namespace codec {
 
-// Per component quantisation of the reversible path (T.800 E.1): no step, one exponent per
-// subband (epsilon_b = component precision + log2 gain of the band), and the guard bits.
+// Per component quantisation (T.800 E.1). Reversible: no step, one exponent per subband
+// (epsilon_b = component precision + log2 gain of the band). Irreversible: an expounded step per
+// subband, the base step divided by the band's synthesis norm.
 struct ComponentQuantization {
   int precision = 8;   // after the component transform (RCT adds a bit to its colour differences)
   int guard_bits = 2;
-  // Exponent of each subband in QCD order: LL, then HL, LH, HH per level from coarsest to finest.
+  // Per subband in QCD order: LL, then HL, LH, HH per level from coarsest to finest.
   std::vector<int> exponents;
+  std::vector<int> mantissas;   // irreversible only
+  std::vector<double> steps;    // irreversible only: the step the decoder will use
+  std::vector<double> norms;    // irreversible only: synthesis norm of the band
+  double component_weight = 1;  // image-domain squared error per unit squared error here (ICT)
   int magnitude_bitplanes(int exponent) const { return guard_bits + exponent - 1; }  // Mb, E-2
 };
 
@@ -25,6 +30,8 @@ struct ComponentQuantization {
 struct CodedTile {
   Tile tile;
   std::vector<t1::EncodedBlock> blocks;  // indexed by CodeBlock::index
+  // Image-domain squared error per unit of tier-1 distortion, per block (rate control).
+  std::vector<double> block_weights;
   std::vector<int> guard_bits_needed;    // per component: the fewest guard bits its coefficients fit in
 };
 
@@ -35,12 +42,14 @@ struct CodingPlan {
   std::vector<CodingStyle> styles;
   std::vector<ComponentQuantization> quantization;
   bool rct = false;
+  bool ict = false;
 };
 
 CodingPlan make_plan(const SourceImage& image, const EncodeParams& params);
 
-// DC shift, component transform, DWT and tier-1 for one tile.
+// DC shift, component transform, DWT (the 9/7 on `dwt`, the reversible 5/3 on `reversible_dwt`,
+// which must take integer planes), quantisation and tier-1 for one tile.
 CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params, int tile_index,
-                    dwt::DwtBackend& dwt, dwt_cpu::ThreadPool& pool);
+                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool);
 
 }  // namespace codec
