@@ -123,6 +123,31 @@ JasperOptions parse_jasper(const std::vector<std::string>& items) {
   return j;
 }
 
+// The stage report of --timing: one line per stage, or one JSON object, on stderr.
+void print_timing(const std::string& mode, const codec::EncodeReport& r, double read_ms, double output_ms,
+                  double measured_ms) {
+  const codec::StageTimes& t = r.times;
+  const std::pair<const char*, double> stages[] = {
+      {"input read", read_ms},        {"GL context creation", t.gl_context}, {"shader compilation", t.shader_compile},
+      {"level shift + MCT", t.level_shift}, {"upload", t.upload},           {"DWT compute", t.dwt},
+      {"download", t.download},      {"quantization", t.quantization},     {"tier-1", t.tier1},
+      {"rate control", t.rate_control}, {"tier-2", t.tier2},             {"output", output_ms}};
+  const double sum = t.total() + read_ms + output_ms;
+  if (mode == "json") {
+    std::string json = "{\"dwt\": \"";
+    for (char ch : r.dwt_backend) json += (ch == '"' || ch == '\\') ? std::string("\\") + ch : std::string(1, ch);
+    json += "\", \"threads\": " + std::to_string(r.threads) + ", \"stages_ms\": {";
+    for (std::size_t i = 0; i < std::size(stages); ++i)
+      json += (i ? ", \"" : "\"") + std::string(stages[i].first) + "\": " + std::to_string(stages[i].second);
+    json += "}, \"sum_ms\": " + std::to_string(sum) + ", \"total_ms\": " + std::to_string(measured_ms) + "}";
+    std::fprintf(stderr, "%s\n", json.c_str());
+    return;
+  }
+  std::fprintf(stderr, "j2kenc: timing in ms, DWT on %s, %d threads\n", r.dwt_backend.c_str(), r.threads);
+  for (const auto& [name, ms] : stages) std::fprintf(stderr, "  %-22s %10.2f\n", name, ms);
+  std::fprintf(stderr, "  %-22s %10.2f\n  %-22s %10.2f\n", "sum of stages", sum, "total (measured)", measured_ms);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -163,6 +188,8 @@ int main(int argc, char** argv) {
   app.add_option("--comment", comment, "COM marker text (default: the encoder's name)");
   app.add_option("--threads", threads, "worker threads (default: all hardware threads)");
   app.add_flag("-q,--quiet", quiet, "no summary line");
+  std::string timing;
+  app.add_flag("--timing{text}", timing, "print the time of each stage after the encode; --timing=json for JSON on stderr");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -217,11 +244,16 @@ int main(int argc, char** argv) {
     if (jo.cblk_height) params.codeblock_height = *jo.cblk_height;
     codec::validate(params);  // before reading: option errors should not wait for a large image
 
-    const auto t0 = std::chrono::steady_clock::now();
+    if (!timing.empty() && timing != "text" && timing != "json")
+      throw std::invalid_argument("--timing takes text or json, got \"" + timing + "\"");
+    using Clock = std::chrono::steady_clock;
+    auto since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
+    const auto t0 = Clock::now();
     const codec::SourceImage image = [&] {
       const cli::QuietStderr quiet_libraries;
       return codec::to_source_image(imageio::read_image(input), input);
     }();
+    const double read_ms = since(t0);
     // Byte targets depend on the image: bits per pixel over all components (Kakadu's --rate),
     // OpenJPEG's ratios of the raw size, JasPer's fractions of it.
     const double pixels = static_cast<double>(image.width) * image.height;
@@ -245,8 +277,11 @@ int main(int argc, char** argv) {
     const std::vector<std::uint8_t> bytes = codec::encode(image, params, format, &report);
     if (!quiet)
       for (const auto& notice : report.notices) std::fprintf(stderr, "j2kenc: note: %s\n", notice.c_str());
+    const auto write_start = Clock::now();
     imageio::write_bytes_atomically(output, bytes);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double output_ms = since(write_start);
+    const double ms = since(t0);
+    if (!timing.empty()) print_timing(timing, report, read_ms, output_ms, ms);
     if (!quiet)
       std::fprintf(stderr, "j2kenc: %s -> %s: %dx%d, %zu components, %zu bytes (%.4f bpp), %.1f ms, DWT on %s\n",
                    input.c_str(), output.c_str(), image.width, image.height, image.components.size(), bytes.size(),

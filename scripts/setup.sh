@@ -11,6 +11,7 @@ PACKAGES=(
   libosmesa6 libosmesa6-dev     # OSMesa, the last-resort headless context
   libhwy-dev                    # Highway SIMD with run-time dispatch
   libcli11-dev                  # command-line parsing
+  libglm-dev                    # vector maths for the performer
   libgtest-dev                  # tests
   libopenjp2-tools grokj2k-tools  # reference decoders the codec's output is checked against
 )

@@ -68,12 +68,18 @@ codec::EncodeParams lossy_at(double bytes) {
   return p;
 }
 
-imageio::Image photo_or_synthetic(int index) {
+fs::path kodak(int index) {
   const char* root = std::getenv("GPUJ2K_SOURCE_DIR");
   char name[32];
   std::snprintf(name, sizeof name, "kodim%02d.png", index);
-  const fs::path p = fs::path(root ? root : ".") / ".." / "shared" / "testimages" / "kodak" / name;
-  if (fs::exists(p)) return imageio::read_image(p.string());
+  return fs::path(root ? root : ".") / ".." / "shared" / "testimages" / "kodak" / name;
+}
+
+// A Kodak photograph when present; otherwise the synthetic mix pattern (which holds a white-noise
+// quadrant, so it reaches much lower PSNR at a given rate than a photograph).
+imageio::Image photo_or_synthetic(int index) {
+  if (fs::exists(kodak(index))) return imageio::read_image(kodak(index).string());
+  std::printf("note: %s not found; using the synthetic mix pattern\n", kodak(index).string().c_str());
   return testimages::generate(testimages::Pattern::Mix, 768, 512, 3, 8, false, static_cast<std::uint64_t>(index));
 }
 
@@ -91,7 +97,9 @@ TEST(J2kLossy, MeetsByteTargetsAndDecodesEverywhere) {
       write_file(s.dir / "x.j2k", bytes);
       const imageio::Image back = decode(s.dir / "x.j2k", s.dir / "x.png");
       ASSERT_EQ(back.pixels.size(), img.pixels.size());
-      EXPECT_GT(psnr(img, back, 8).back(), bpp < 0.5 ? 20.0 : 26.0);
+      // Well above what a mis-decoded stream gives (< 10 dB); photographs reach far more.
+      const bool photo = fs::exists(kodak(index));
+      EXPECT_GT(psnr(img, back, 8).back(), photo ? (bpp < 0.5 ? 20.0 : 26.0) : (bpp < 0.5 ? 12.0 : 15.0));
       EXPECT_TRUE(run("grk_decompress -i '" + (s.dir / "x.j2k").string() + "' -o '" + (s.dir / "g.png").string() + "'"));
     }
   }
@@ -120,6 +128,25 @@ TEST(J2kLossy, QualityTracksOpenJpegAtTheSameSize) {
     EXPECT_LE(bytes.size(), opj_size);
     for (std::size_t c = 0; c < ours.size(); ++c) EXPECT_GT(ours[c], theirs[c] - 0.06) << "channel " << c;
   }
+}
+
+// --psnr: the measured PSNR (decoded by OpenJPEG, over all RGB samples) lands within 0.3 dB above
+// the target, for single and layered targets.
+TEST(J2kLossy, PsnrTargetsLandJustAbove) {
+  const imageio::Image img = photo_or_synthetic(5);
+  const auto source = codec::to_source_image(img, "image");
+  Scratch s;
+  codec::EncodeParams p = lossy_at(0);
+  p.layers = {{codec::LayerTarget::Kind::Psnr, 30}, {codec::LayerTarget::Kind::Psnr, 35}};
+  const auto bytes = codec::encode(source, p, codec::FileFormat::Codestream);
+  write_file(s.dir / "x.j2k", bytes);
+  const double top = psnr(img, decode(s.dir / "x.j2k", s.dir / "all.png"), 8).back();
+  const double first = psnr(img, decode(s.dir / "x.j2k", s.dir / "one.png", "-l 1"), 8).back();
+  std::printf("targets 30, 35 dB: layer 1 %.3f dB, both layers %.3f dB, %zu bytes\n", first, top, bytes.size());
+  EXPECT_GE(first, 30.0);
+  EXPECT_LE(first, 30.3);
+  EXPECT_GE(top, 35.0);
+  EXPECT_LE(top, 35.3);
 }
 
 TEST(J2kLossy, GpuDwtGivesTheCpuQuality) {

@@ -107,6 +107,25 @@ TEST_F(J2kencCli, LossyRateTargetsThroughTheCommandLine) {
   }
 }
 
+// --timing=json: every stage is there and they add up to the measured total within 5 %.
+TEST_F(J2kencCli, TimingStagesAddUpToTheTotal) {
+  const fs::path big = dir / "big.png", out = dir / "t.j2k";
+  imageio::write_image(big.string(), testimages::generate(testimages::Pattern::Mix, 640, 480, 3, 8));
+  const auto r = j2kenc("-i '" + big.string() + "' -o '" + out.string() + "' --rate 1 --dwt cpu -q --timing=json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* stage : {"input read", "GL context creation", "shader compilation", "upload", "DWT compute", "download",
+                            "quantization", "tier-1", "rate control", "tier-2", "output"})
+    EXPECT_NE(r.err.find(std::string("\"") + stage + "\""), std::string::npos) << stage << " missing from " << r.err;
+  auto number_after = [&](const std::string& key) {
+    const auto at = r.err.find("\"" + key + "\": ");
+    EXPECT_NE(at, std::string::npos) << key;
+    return std::stod(r.err.substr(at + key.size() + 4));
+  };
+  const double sum = number_after("sum_ms"), total = number_after("total_ms");
+  EXPECT_GT(total, 0);
+  EXPECT_NEAR(sum, total, 0.05 * total);
+}
+
 TEST_F(J2kencCli, BadInputGetsOneLine) {
   const std::string in = " -i '" + rgb.string() + "' ";
   expect_one_line_failure("-i '" + (dir / "missing.png").string() + "' --lossless", "missing.png");

@@ -425,3 +425,162 @@ TEST(T1, RejectsInconsistentArguments) {
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Reconstruction after truncation (codec/t1/reconstruction.h), against the reference decoder.
+
+#include "codec/t1/reconstruction.h"
+
+namespace {
+
+using codec::t1::reconstruct;
+
+std::vector<float> reconstructed(const Block& b, int w, int h, Orientation o, BlockStyle style, int passes,
+                                 float final_offset) {
+  std::vector<float> out(b.c.size(), -12345.0f);  // reconstruct() must overwrite every value
+  reconstruct(b.c, w, h, o, b.mb, style, passes, out, final_offset);
+  return out;
+}
+
+// What the reference decoder reconstructs from the codeword cut after pass k - 1 (at that pass's
+// reported length), given the segment lengths a packet header would carry.
+std::vector<std::int64_t> reference_after(const EncodedBlock& enc, int w, int h, Orientation o, int planes,
+                                          BlockStyle style, int k) {
+  if (k == 0) return std::vector<std::int64_t>(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
+  const auto& last = enc.passes[static_cast<std::size_t>(k - 1)];
+  std::vector<std::size_t> ends;
+  for (int j = 0; j < k - 1; ++j)
+    if (enc.passes[static_cast<std::size_t>(j)].terminated) ends.push_back(enc.passes[static_cast<std::size_t>(j)].length);
+  ends.push_back(last.length);
+  const std::span<const std::uint8_t> cut(enc.data.data(), last.length);
+  t1ref::T1Decoder dec(w, h, band_of(o), planes, style, cut, ends);
+  for (int j = 0; j < k; ++j) dec.decode_pass();
+  return dec.reconstruction();
+}
+
+// For every truncation k = 0 .. passes: reconstruct() equals the reference decoder's mid-point
+// reconstruction. That decoder reconstructs fully known magnitudes exactly, i.e. final_offset 0;
+// with final_offset 0.5 every coefficient known down to plane 0 must move 0.5 away from zero and
+// nothing else change. Which ones know plane 0 follows from the last pass received: none unless
+// it is a pass of plane 0; after plane 0's refinement or cleanup pass every significant one; after
+// its significance pass those it coded, which are exactly those reconstructed at magnitude 1
+// (anything significant before plane 0 reconstructs at an odd magnitude >= 3). Also: the squared
+// error with final_offset 0 is the energy minus the reported distortion decreases.
+void check_reconstruction(const Block& b, int w, int h, Orientation o, BlockStyle style, const std::string& what) {
+  SCOPED_TRACE(what);
+  const EncodedBlock enc = codec::t1::encode_block(b.c, w, h, o, b.mb, style);
+  const int planes = b.mb - enc.missing_msbs;
+  const int total = static_cast<int>(enc.passes.size());
+  const t1ref::T1Decoder rules(w, h, band_of(o), planes, style, enc.data, {});
+  const long double energy = squared_error(b.c, std::vector<std::int64_t>(b.c.size(), 0));
+  const double tolerance = 1e-6 * static_cast<double>(energy);
+  long double claimed = energy;
+  for (int k = 0; k <= total; ++k) {
+    if (k > 0) claimed -= enc.passes[static_cast<std::size_t>(k - 1)].distortion_decrease;
+    const std::vector<std::int64_t> ref = reference_after(enc, w, h, o, planes, style, k);
+    const std::vector<float> exact = reconstructed(b, w, h, o, style, k, 0.0f);
+    const std::vector<float> offset = reconstructed(b, w, h, o, style, k, 0.5f);
+    const bool plane0 = k > 0 && rules.plane_of(k - 1) == 0;
+    const bool plane0_spp = plane0 && t1ref::T1Decoder::kind_of(k - 1) == 0;
+    long double error = 0;
+    for (std::size_t i = 0; i < ref.size(); ++i) {
+      const std::int64_t r = ref[i];
+      ASSERT_EQ(exact[i], static_cast<float>(r))
+          << "final_offset 0, after " << k << " of " << total << " passes, coefficient " << i % static_cast<std::size_t>(w)
+          << "," << i / static_cast<std::size_t>(w) << " = " << b.c[i];
+      const bool knows_plane0 = r != 0 && plane0 && (!plane0_spp || r == 1 || r == -1);
+      const double shifted = static_cast<double>(r) + (knows_plane0 ? (r < 0 ? -0.5 : 0.5) : 0.0);
+      ASSERT_EQ(offset[i], static_cast<float>(shifted))
+          << "final_offset 0.5, after " << k << " of " << total << " passes, coefficient "
+          << i % static_cast<std::size_t>(w) << "," << i / static_cast<std::size_t>(w) << " = " << b.c[i];
+      const long double d = static_cast<long double>(b.c[i]) - static_cast<long double>(exact[i]);
+      error += d * d;
+    }
+    ASSERT_LE(std::fabs(static_cast<double>(error - claimed)), tolerance)
+        << "after " << k << " passes: error " << static_cast<double>(error) << ", energy minus reported decreases "
+        << static_cast<double>(claimed);
+  }
+  // More passes than the block has: everything received.
+  EXPECT_EQ(reconstructed(b, w, h, o, style, total + 5, 0.5f), reconstructed(b, w, h, o, style, total, 0.5f));
+}
+
+TEST(T1Reconstruction, MatchesReferenceDecoderAtEveryTruncation) {
+  std::mt19937 rng(4242);
+  const Size sizes[] = {{1, 1}, {3, 5}, {4, 4}, {2, 9}, {13, 17}, {16, 16}, {7, 64}, {64, 7}, {64, 64}};
+  std::size_t rotation = 0;
+  for (BlockStyle st : styles())
+    for (Size s : sizes)
+      for (Dist d : {Dist::Zero, Dist::Single, Dist::Sparse, Dist::Dense, Dist::Laplacian})
+        for (Orientation o : orientations_for(s, rotation++)) {
+          const Block b = make_block(d, s.w, s.h, rng);
+          check_reconstruction(b, s.w, s.h, o, st, describe(s.w, s.h, o, d, st));
+          if (HasFatalFailure()) return;
+        }
+}
+
+TEST(T1Reconstruction, MatchesReferenceDecoderForLargeMagnitudes) {
+  std::mt19937 rng(99);
+  const Size sizes[] = {{3, 5}, {16, 16}, {64, 64}};
+  std::size_t rotation = 0;
+  for (BlockStyle st : {BlockStyle{}, BlockStyle::from_spcod(0x01), BlockStyle::from_spcod(0x08),
+                        BlockStyle::from_spcod(0x3F)})
+    for (Size s : sizes)
+      for (Dist d : {Dist::Large, Dist::Huge})
+        for (Orientation o : orientations_for(s, rotation++)) {
+          const Block b = make_block(d, s.w, s.h, rng);
+          check_reconstruction(b, s.w, s.h, o, st, describe(s.w, s.h, o, d, st));
+          if (HasFatalFailure()) return;
+        }
+}
+
+// The scan order and the neighbourhood, worked by hand. One column of eight (two stripes), three
+// planes: passes 0 cleanup (plane 2), 1-3 plane 1, 4 significance propagation of plane 0.
+TEST(T1Reconstruction, SignificancePropagatesInScanOrderOnly) {
+  const Block b{{0, 0, 1, 1, 4, 1, 0, 0}, 3};
+  // 4 (known down to plane 1) reconstructs at 5. Row 2 comes before row 3 in the scan and has no
+  // significant neighbour then; row 3 has 4 below; row 5 has 4 above.
+  EXPECT_EQ(reconstructed(b, 1, 8, Orientation::LL, {}, 5, 0.5f),
+            (std::vector<float>{0, 0, 0, 1.5f, 5, 1.5f, 0, 0}));
+  // Vertically causal: row 3, last of its stripe, does not see the stripe below.
+  const BlockStyle causal = BlockStyle::from_spcod(0x08);
+  EXPECT_EQ(reconstructed(b, 1, 8, Orientation::LL, causal, 5, 0.5f),
+            (std::vector<float>{0, 0, 0, 0, 5, 1.5f, 0, 0}));
+  // The refinement pass of plane 0 then fixes 4; the cleanup pass codes the rest.
+  EXPECT_EQ(reconstructed(b, 1, 8, Orientation::LL, causal, 6, 0.5f),
+            (std::vector<float>{0, 0, 0, 0, 4.5f, 1.5f, 0, 0}));
+  EXPECT_EQ(reconstructed(b, 1, 8, Orientation::LL, causal, 7, 0.0f),
+            (std::vector<float>{0, 0, 1, 1, 4, 1, 0, 0}));
+  // Along a row, within a stripe: newly significant coefficients propagate to the right only.
+  const Block row{{1, 1, 1, 4, 1, 1}, 3};
+  EXPECT_EQ(reconstructed(row, 6, 1, Orientation::HH, {}, 5, 0.5f), (std::vector<float>{0, 0, 1.5f, 5, 1.5f, 1.5f}));
+  // Before plane 0: after the cleanup pass of plane 2, 4 lies in [4, 8) and reconstructs at 6;
+  // after plane 1's significance pass still so; nothing else is significant.
+  EXPECT_EQ(reconstructed(row, 6, 1, Orientation::HH, {}, 1, 0.5f), (std::vector<float>{0, 0, 0, 6, 0, 0}));
+  EXPECT_EQ(reconstructed(row, 6, 1, Orientation::HH, {}, 2, 0.5f), (std::vector<float>{0, 0, 0, 6, 0, 0}));
+  EXPECT_EQ(reconstructed(row, 6, 1, Orientation::HH, {}, 0, 0.5f), (std::vector<float>(6, 0.0f)));
+  const Block negative{{-3}, 2};
+  EXPECT_EQ(reconstructed(negative, 1, 1, Orientation::LL, {}, 1, 0.5f), (std::vector<float>{-3}));
+  EXPECT_EQ(reconstructed(negative, 1, 1, Orientation::LL, {}, 4, 0.5f), (std::vector<float>{-3.5f}));
+  EXPECT_EQ(reconstructed(negative, 1, 1, Orientation::LL, {}, 4, 0.0f), (std::vector<float>{-3}));
+}
+
+TEST(T1Reconstruction, RejectsInconsistentArguments) {
+  const std::vector<std::int32_t> c(12, 3);
+  std::vector<float> out(12);
+  std::vector<float> short_out(11);
+  EXPECT_NO_THROW(reconstruct(c, 4, 3, Orientation::LL, 2, {}, 3, out));
+  EXPECT_THROW(reconstruct(c, 4, 4, Orientation::LL, 8, {}, 3, out), std::invalid_argument);  // 12 != 16
+  EXPECT_THROW(reconstruct(c, 4, 3, Orientation::LL, 8, {}, 3, short_out), std::invalid_argument);
+  EXPECT_THROW(reconstruct(c, 0, 12, Orientation::LL, 8, {}, 3, out), std::invalid_argument);
+  EXPECT_THROW(reconstruct(c, 4, 3, Orientation::LL, 1, {}, 3, out), std::invalid_argument);  // 3 needs 2 planes
+  EXPECT_THROW(reconstruct(c, 4, 3, Orientation::LL, 32, {}, 3, out), std::invalid_argument);
+  EXPECT_THROW(reconstruct(c, 4, 3, Orientation::LL, 8, {}, -1, out), std::invalid_argument);
+  EXPECT_THROW(reconstruct(c, 4, 3, Orientation::LL, 8, {}, 3, out, 1.0f), std::invalid_argument);
+  EXPECT_THROW(reconstruct(c, 4, 3, Orientation::LL, 8, {}, 3, out, -0.25f), std::invalid_argument);
+  EXPECT_THROW(reconstruct(c, 4, 3, Orientation::LL, 8, {}, 3, out, std::nanf("")), std::invalid_argument);
+  const std::vector<std::int32_t> lowest(1, INT32_MIN);
+  std::vector<float> one(1);
+  EXPECT_THROW(reconstruct(lowest, 1, 1, Orientation::LL, 31, {}, 1, one), std::invalid_argument);
+}
+
+}  // namespace

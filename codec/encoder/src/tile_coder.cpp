@@ -7,6 +7,10 @@
 #include <string>
 
 #include "codec/encoder/component_transform.h"
+#include "codec/encoder/encoder.h"
+#include "dwt_gpu/gpu_backend.h"
+
+#include <chrono>
 #include "codec/encoder/quantization.h"
 #include "dwt/norms.h"
 #include "codec/structure/error.h"
@@ -110,7 +114,11 @@ CodingPlan make_plan(const SourceImage& image, const EncodeParams& params) {
 }
 
 CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params, int tile_index,
-                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool) {
+                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool, StageTimes& times) {
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); };
+  auto clock = Clock::now();
+  auto* gpu = dynamic_cast<dwt_gpu::GpuBackend*>(&dwt);
   CodedTile coded;
   coded.tile = build_tile(plan.grid, plan.sampling, plan.styles, tile_index);
   Tile& tile = coded.tile;
@@ -136,6 +144,7 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
   }
   if (plan.rct) rct_forward(planes[0], planes[1], planes[2]);
   if (plan.ict) ict_forward(float_planes[0], float_planes[1], float_planes[2]);
+  times.level_shift += since(clock);
 
   for (std::size_t c = 0; c < nc; ++c) {
     const TileComponent& tc = tile.components[c];
@@ -147,11 +156,26 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
     p.levels = tc.levels;
     p.origin = dwt::Origin{tc.rect.x0, tc.rect.y0};
     p.levels_may_exceed_size = true;
+    clock = Clock::now();
     if (params.lossless) {
       reversible_dwt.forward(dwt::make_span(planes[c].data(), w, h), p);
+      times.dwt += since(clock);
       continue;
     }
     dwt.forward(dwt::make_span(float_planes[c].data(), w, h), p);
+    if (gpu) {
+      // The GPU splits its own time; anything around it (validation, tables) counts as upload.
+      const dwt_gpu::GpuTimings& g = gpu->last_timings();
+      const double whole = since(clock);
+      times.dwt += g.compute_ms;
+      times.download += g.download_ms;
+      times.upload += whole - g.compute_ms - g.download_ms - g.context_ms - g.compile_ms;
+      times.gl_context += g.context_ms;
+      times.shader_compile += g.compile_ms;
+    } else {
+      times.dwt += since(clock);
+    }
+    clock = Clock::now();
     const ComponentQuantization& q = plan.quantization[c];
     int band_index = 0;
     for (const Resolution& res : tc.resolutions)
@@ -164,7 +188,9 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
             planes[c][row + static_cast<std::size_t>(x)] = quantize(float_planes[c][row + static_cast<std::size_t>(x)], inverse_step);
         }
       }
+    times.quantization += since(clock);
   }
+  clock = Clock::now();
 
   // Guard bits: each component's coefficients must fit Mb = G + exponent - 1 magnitude bits.
   coded.guard_bits_needed.assign(nc, 0);
@@ -210,6 +236,7 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
   }
   coded.blocks.resize(tile.code_blocks);
   coded.block_weights.assign(tile.code_blocks, 1.0);
+  coded.block_magnitude_bitplanes.assign(tile.code_blocks, 0);
   pool.parallel_for(jobs.size(), [&](std::size_t i) {
     const Job& job = jobs[i];
     const TileComponent& tc = tile.components[job.component];
@@ -223,6 +250,7 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
     for (int y = 0; y < h; ++y)
       std::copy_n(planes[job.component].begin() + static_cast<std::ptrdiff_t>((y0 + y) * tc.rect.width() + x0), w,
                   buffer.begin() + static_cast<std::ptrdiff_t>(y) * w);
+    coded.block_magnitude_bitplanes[job.block->index] = guard + job.exponent - 1;
     t1::EncodedBlock eb = t1::encode_block(buffer, w, h, to_t1(job.band->orientation), guard + job.exponent - 1,
                                            params.block_style);
     eb.missing_msbs -= guard - q.guard_bits;  // expressed against the plan's guard bits for now
@@ -232,6 +260,8 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
       coded.block_weights[job.block->index] = step * step * norm * norm * q.component_weight;
     }
   });
+  times.tier1 += since(clock);
+  if (!params.lossless) coded.quantized = std::move(planes);
   return coded;
 }
 

@@ -10,8 +10,28 @@ namespace codec {
 
 enum class FileFormat { Codestream, Jp2 };
 
+// Milliseconds spent in each stage of one encode (the thesis' Table 4.1 split, finer). GPU stages
+// are measured with a glFinish before each clock read, so they are real, not estimates.
+struct StageTimes {
+  double gl_context = 0;       // creating the GL context (GPU DWT only)
+  double shader_compile = 0;   // compiling the DWT shader (GPU DWT only)
+  double level_shift = 0;      // DC level shift and component transform
+  double upload = 0;           // planes to the GPU
+  double dwt = 0;              // the transform itself
+  double download = 0;         // planes back from the GPU
+  double quantization = 0;
+  double tier1 = 0;
+  double rate_control = 0;     // hulls, allocation, and the trial assemblies that size the file
+  double tier2 = 0;            // the final packets and codestream
+  double total() const {
+    return gl_context + shader_compile + level_shift + upload + dwt + download + quantization + tier1 + rate_control + tier2;
+  }
+};
+
 // What an encode tells its caller besides the bytes.
 struct EncodeReport {
+  StageTimes times;
+  int threads = 0;
   std::string dwt_backend;             // the backend that ran the DWT, with its renderer for the GPU
   std::vector<std::string> notices;    // one line each, e.g. the GPU fallback
   std::vector<double> layer_estimates; // per layer: estimated PSNR (dB) from the rate-distortion data

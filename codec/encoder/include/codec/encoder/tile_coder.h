@@ -32,6 +32,10 @@ struct CodedTile {
   std::vector<t1::EncodedBlock> blocks;  // indexed by CodeBlock::index
   // Image-domain squared error per unit of tier-1 distortion, per block (rate control).
   std::vector<double> block_weights;
+  std::vector<int> block_magnitude_bitplanes;  // the Mb each block was coded with
+  // Lossy: the quantisation indices of each tile-component in the Mallat layout, kept so the encoder
+  // can rebuild what a decoder sees and measure true error (PSNR targets).
+  std::vector<std::vector<std::int32_t>> quantized;
   std::vector<int> guard_bits_needed;    // per component: the fewest guard bits its coefficients fit in
 };
 
@@ -49,7 +53,8 @@ CodingPlan make_plan(const SourceImage& image, const EncodeParams& params);
 
 // DC shift, component transform, DWT (the 9/7 on `dwt`, the reversible 5/3 on `reversible_dwt`,
 // which must take integer planes), quantisation and tier-1 for one tile.
+struct StageTimes;
 CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params, int tile_index,
-                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool);
+                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool, StageTimes& times);
 
 }  // namespace codec
