@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "codec/encoder/encoder.h"
+#include "support/scratch_dir.h"
+#include "support/shared_assets.h"
 #include "codec/structure/error.h"
 #include "imageio/read.h"
 #include "imageio/write.h"
@@ -19,22 +21,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Scratch {
-  fs::path dir;
-  Scratch() {
-    std::random_device rd;
-    dir = fs::temp_directory_path() / ("j2k_lossless_" + std::to_string(rd()));
-    fs::create_directories(dir);
-  }
-  ~Scratch() { fs::remove_all(dir); }
-};
+using Scratch = test_support::ScratchDir;
+using test_support::write_bytes;
 
-bool have(const char* tool) { return std::system((std::string("command -v ") + tool + " >/dev/null 2>&1").c_str()) == 0; }
 
-void write_file(const fs::path& p, const std::vector<std::uint8_t>& bytes) {
-  std::ofstream out(p, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-}
 
 codec::SourceImage to_source(const imageio::Image& img) { return codec::to_source_image(img, "generated"); }
 
@@ -80,23 +70,23 @@ void check_lossless(const Case& c) {
   SCOPED_TRACE(c.name);
   Scratch scratch;
   const auto bytes = codec::encode(to_source(c.image), c.params, c.format);
-  const fs::path file = scratch.dir / (c.format == codec::FileFormat::Jp2 ? "x.jp2" : "x.j2k");
-  write_file(file, bytes);
+  const fs::path file = scratch / (c.format == codec::FileFormat::Jp2 ? "x.jp2" : "x.j2k");
+  write_bytes(file, bytes);
   for (const std::string tool : {"opj_decompress", "grk_decompress"}) {
-    if (!have(tool.c_str())) {
+    if (!test_support::have_tool(tool)) {
       ADD_FAILURE() << tool << " is not installed (scripts/setup.sh installs libopenjp2-tools and grokj2k-tools)";
       continue;
     }
-    const imageio::Image decoded = decode_with(tool, file, scratch.dir / (tool + ".png"));
+    const imageio::Image decoded = decode_with(tool, file, scratch / (tool + ".png"));
     if (tool == "grk_decompress" && !c.opj_equivalent.empty() && decoded.pixels != c.image.pixels) {
-      ASSERT_TRUE(have("opj_compress"));
-      const fs::path source = scratch.dir / (c.image.channels == 1 ? "in.pgm" : "in.ppm");
+      ASSERT_TRUE(test_support::have_tool("opj_compress"));
+      const fs::path source = scratch / (c.image.channels == 1 ? "in.pgm" : "in.ppm");
       imageio::write_image(source.string(), c.image);
       const std::string cmd = "opj_compress -i '" + source.string() + "' -o '" +
-                              (scratch.dir / "opj.j2k").string() + "' " + c.opj_equivalent + " >/dev/null 2>&1";
+                              (scratch / "opj.j2k").string() + "' " + c.opj_equivalent + " >/dev/null 2>&1";
       ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
-      const imageio::Image grok_of_ours = decode_with(tool, file, scratch.dir / "grk_ours.png", "-H 1");
-      const imageio::Image grok_of_opj = decode_with(tool, scratch.dir / "opj.j2k", scratch.dir / "grk_opj.png", "-H 1");
+      const imageio::Image grok_of_ours = decode_with(tool, file, scratch / "grk_ours.png", "-H 1");
+      const imageio::Image grok_of_opj = decode_with(tool, scratch / "opj.j2k", scratch / "grk_opj.png", "-H 1");
       EXPECT_EQ(grok_of_ours.pixels, grok_of_opj.pixels) << "Grok decodes our stream differently from OpenJPEG's equivalent";
       std::printf("note: %s: grk_decompress mis-decodes this tiling for OpenJPEG's stream too; outputs identical\n",
                   c.name.c_str());
@@ -240,11 +230,11 @@ TEST(J2kLossless, SignedSamples) {
     imageio::Image img = testimages::generate(testimages::Pattern::Noise, 29, 19, 1, bits, true);
     Scratch scratch;
     const auto bytes = codec::encode(to_source(img), lossless(), codec::FileFormat::Codestream);
-    write_file(scratch.dir / "s.j2k", bytes);
+    write_bytes(scratch / "s.j2k", bytes);
     for (const std::string tool : {"opj_decompress", "grk_decompress"}) {
-      const fs::path out = scratch.dir / (tool + ".pgx");
-      ASSERT_EQ(std::system((tool + " -i '" + (scratch.dir / "s.j2k").string() + "' -o '" + out.string() + "' >/dev/null 2>&1").c_str()), 0);
-      const auto decoded = read_pgx(scratch.dir / (tool + "_0.pgx"));
+      const fs::path out = scratch / (tool + ".pgx");
+      ASSERT_EQ(std::system((tool + " -i '" + (scratch / "s.j2k").string() + "' -o '" + out.string() + "' >/dev/null 2>&1").c_str()), 0);
+      const auto decoded = read_pgx(scratch / (tool + "_0.pgx"));
       ASSERT_EQ(decoded.size(), img.pixels.size()) << tool;
       for (std::size_t i = 0; i < decoded.size(); ++i) ASSERT_EQ(decoded[i], static_cast<std::int32_t>(img.pixels[i])) << tool << " at " << i;
     }
@@ -252,14 +242,11 @@ TEST(J2kLossless, SignedSamples) {
 }
 
 TEST(J2kLossless, KodakPhotographs) {
-  const char* root = std::getenv("GPUJ2K_SOURCE_DIR");
-  const fs::path dir = fs::path(root ? root : ".") / ".." / "shared" / "testimages" / "kodak";
-  if (!fs::exists(dir / "kodim01.png")) GTEST_SKIP() << "Kodak photographs not found at " << dir << "; skipped";
+  REQUIRE_SHARED_FILE(test_support::kodak_photo(1));
   for (int i = 1; i <= 16; ++i) {
-    char name[32];
-    std::snprintf(name, sizeof name, "kodim%02d.png", i);
-    if (!fs::exists(dir / name)) continue;
-    check_lossless(make_case(name, imageio::read_image((dir / name).string()), lossless(), codec::FileFormat::Jp2));
+    const fs::path photo = test_support::kodak_photo(i);
+    if (!fs::exists(photo)) continue;
+    check_lossless(make_case(photo.filename().string(), imageio::read_image(photo.string()), lossless(), codec::FileFormat::Jp2));
   }
 }
 

@@ -10,6 +10,8 @@
 #include <random>
 
 #include "codec/encoder/encoder.h"
+#include "support/scratch_dir.h"
+#include "support/shared_assets.h"
 #include "imageio/read.h"
 #include "imageio/write.h"
 #include "testimages/patterns.h"
@@ -18,22 +20,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Scratch {
-  fs::path dir;
-  Scratch() {
-    std::random_device rd;
-    dir = fs::temp_directory_path() / ("j2k_lossy_" + std::to_string(rd()));
-    fs::create_directories(dir);
-  }
-  ~Scratch() { fs::remove_all(dir); }
-};
+using Scratch = test_support::ScratchDir;
+using test_support::write_bytes;
 
-void write_file(const fs::path& p, const std::vector<std::uint8_t>& bytes) {
-  std::ofstream out(p, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-}
 
-bool run(const std::string& cmd) { return std::system((cmd + " >/dev/null 2>&1").c_str()) == 0; }
+bool run(const std::string& cmd) { return test_support::run_quietly(cmd); }
 
 // PSNR per channel and over all channels, peak 2^bits - 1.
 std::vector<double> psnr(const imageio::Image& a, const imageio::Image& b, int bits) {
@@ -68,12 +59,7 @@ codec::EncodeParams lossy_at(double bytes) {
   return p;
 }
 
-fs::path kodak(int index) {
-  const char* root = std::getenv("GPUJ2K_SOURCE_DIR");
-  char name[32];
-  std::snprintf(name, sizeof name, "kodim%02d.png", index);
-  return fs::path(root ? root : ".") / ".." / "shared" / "testimages" / "kodak" / name;
-}
+fs::path kodak(int index) { return test_support::kodak_photo(index); }
 
 // A Kodak photograph when present; otherwise the synthetic mix pattern (which holds a white-noise
 // quadrant, so it reaches much lower PSNR at a given rate than a photograph).
@@ -94,13 +80,13 @@ TEST(J2kLossy, MeetsByteTargetsAndDecodesEverywhere) {
       const auto bytes = codec::encode(source, lossy_at(target), codec::FileFormat::Codestream);
       EXPECT_LE(static_cast<double>(bytes.size()), target);
       EXPECT_GE(static_cast<double>(bytes.size()), 0.995 * target);
-      write_file(s.dir / "x.j2k", bytes);
-      const imageio::Image back = decode(s.dir / "x.j2k", s.dir / "x.png");
+      write_bytes(s / "x.j2k", bytes);
+      const imageio::Image back = decode(s / "x.j2k", s / "x.png");
       ASSERT_EQ(back.pixels.size(), img.pixels.size());
       // Well above what a mis-decoded stream gives (< 10 dB); photographs reach far more.
       const bool photo = fs::exists(kodak(index));
       EXPECT_GT(psnr(img, back, 8).back(), photo ? (bpp < 0.5 ? 20.0 : 26.0) : (bpp < 0.5 ? 12.0 : 15.0));
-      EXPECT_TRUE(run("grk_decompress -i '" + (s.dir / "x.j2k").string() + "' -o '" + (s.dir / "g.png").string() + "'"));
+      EXPECT_TRUE(run("grk_decompress -i '" + (s / "x.j2k").string() + "' -o '" + (s / "g.png").string() + "'"));
     }
   }
 }
@@ -111,18 +97,18 @@ TEST(J2kLossy, MeetsByteTargetsAndDecodesEverywhere) {
 TEST(J2kLossy, QualityTracksOpenJpegAtTheSameSize) {
   const imageio::Image img = photo_or_synthetic(5);
   Scratch s;
-  imageio::write_image((s.dir / "in.ppm").string(), img);
+  imageio::write_image((s / "in.ppm").string(), img);
   for (double bpp : {0.1875, 0.75, 3.0}) {
     SCOPED_TRACE(bpp);
     const double ratio = 24.0 / bpp;
-    ASSERT_TRUE(run("opj_compress -i '" + (s.dir / "in.ppm").string() + "' -o '" + (s.dir / "opj.j2k").string() +
+    ASSERT_TRUE(run("opj_compress -i '" + (s / "in.ppm").string() + "' -o '" + (s / "opj.j2k").string() +
                     "' -I -n 6 -r " + std::to_string(ratio)));
-    const auto opj_size = fs::file_size(s.dir / "opj.j2k");
+    const auto opj_size = fs::file_size(s / "opj.j2k");
     const auto bytes = codec::encode(codec::to_source_image(img, "image"), lossy_at(static_cast<double>(opj_size)),
                                      codec::FileFormat::Codestream);
-    write_file(s.dir / "ours.j2k", bytes);
-    const auto ours = psnr(img, decode(s.dir / "ours.j2k", s.dir / "ours.png"), 8);
-    const auto theirs = psnr(img, decode(s.dir / "opj.j2k", s.dir / "opj.png"), 8);
+    write_bytes(s / "ours.j2k", bytes);
+    const auto ours = psnr(img, decode(s / "ours.j2k", s / "ours.png"), 8);
+    const auto theirs = psnr(img, decode(s / "opj.j2k", s / "opj.png"), 8);
     std::printf("%.4f bpp: ours %zu bytes %.3f dB, opj_compress %zu bytes %.3f dB\n", bpp, bytes.size(), ours.back(),
                 static_cast<std::size_t>(opj_size), theirs.back());
     EXPECT_LE(bytes.size(), opj_size);
@@ -139,9 +125,9 @@ TEST(J2kLossy, PsnrTargetsLandJustAbove) {
   codec::EncodeParams p = lossy_at(0);
   p.layers = {{codec::LayerTarget::Kind::Psnr, 30}, {codec::LayerTarget::Kind::Psnr, 35}};
   const auto bytes = codec::encode(source, p, codec::FileFormat::Codestream);
-  write_file(s.dir / "x.j2k", bytes);
-  const double top = psnr(img, decode(s.dir / "x.j2k", s.dir / "all.png"), 8).back();
-  const double first = psnr(img, decode(s.dir / "x.j2k", s.dir / "one.png", "-l 1"), 8).back();
+  write_bytes(s / "x.j2k", bytes);
+  const double top = psnr(img, decode(s / "x.j2k", s / "all.png"), 8).back();
+  const double first = psnr(img, decode(s / "x.j2k", s / "one.png", "-l 1"), 8).back();
   std::printf("targets 30, 35 dB: layer 1 %.3f dB, both layers %.3f dB, %zu bytes\n", first, top, bytes.size());
   EXPECT_GE(first, 30.0);
   EXPECT_LE(first, 30.3);
@@ -159,10 +145,10 @@ TEST(J2kLossy, GpuDwtGivesTheCpuQuality) {
   codec::EncodeReport report;
   const auto gpu = codec::encode(source, p, codec::FileFormat::Codestream, &report);
   std::printf("GPU DWT: %s\n", report.dwt_backend.c_str());
-  write_file(s.dir / "cpu.j2k", cpu);
-  write_file(s.dir / "gpu.j2k", gpu);
-  const auto a = psnr(img, decode(s.dir / "cpu.j2k", s.dir / "cpu.png"), 8);
-  const auto b = psnr(img, decode(s.dir / "gpu.j2k", s.dir / "gpu.png"), 8);
+  write_bytes(s / "cpu.j2k", cpu);
+  write_bytes(s / "gpu.j2k", gpu);
+  const auto a = psnr(img, decode(s / "cpu.j2k", s / "cpu.png"), 8);
+  const auto b = psnr(img, decode(s / "gpu.j2k", s / "gpu.png"), 8);
   for (std::size_t c = 0; c < a.size(); ++c) EXPECT_NEAR(a[c], b[c], 0.02) << "channel " << c;
 }
 
@@ -175,12 +161,12 @@ TEST(J2kLossy, MoreLayersMoreQuality) {
   for (double bpp : {0.1, 0.25, 0.5, 1.0, 2.0}) p.layers.push_back({codec::LayerTarget::Kind::Bytes, std::floor(bpp * pixels / 8)});
   const auto bytes = codec::encode(codec::to_source_image(img, "image"), p, codec::FileFormat::Codestream);
   EXPECT_LE(static_cast<double>(bytes.size()), p.layers.back().value);
-  write_file(s.dir / "x.j2k", bytes);
+  write_bytes(s / "x.j2k", bytes);
   double previous = 0;
   for (int k = 1; k <= 5; ++k) {
     const std::string layer = std::to_string(k);
-    const fs::path out = s.dir / ("layer" + layer + ".png");
-    const double q = psnr(img, decode(s.dir / "x.j2k", out, "-l " + layer), 8).back();
+    const fs::path out = s / ("layer" + layer + ".png");
+    const double q = psnr(img, decode(s / "x.j2k", out, "-l " + layer), 8).back();
     EXPECT_GT(q, previous + 0.5) << "layer " << k;
     previous = q;
   }
@@ -216,12 +202,12 @@ TEST(J2kLossy, OptionMatrixDecodes) {
     Scratch s;
     const auto bytes = codec::encode(source, params, codec::FileFormat::Codestream);
     EXPECT_LE(static_cast<double>(bytes.size()), params.layers.back().value);
-    write_file(s.dir / "x.j2k", bytes);
+    write_bytes(s / "x.j2k", bytes);
     // This content holds a white-noise quadrant, and 5 levels on 40x32 tiles with small precincts
     // are costly, so 4000 bytes buy 17-23 dB (opj_compress gets 18.3 dB for the tiling alone, 2 %
     // over size); a mis-decoded stream falls far below 15.
-    EXPECT_GT(psnr(img, decode(s.dir / "x.j2k", s.dir / "x.png"), 8).back(), 15.0);
-    EXPECT_TRUE(run("grk_decompress -H 1 -i '" + (s.dir / "x.j2k").string() + "' -o '" + (s.dir / "g.png").string() + "'"));
+    EXPECT_GT(psnr(img, decode(s / "x.j2k", s / "x.png"), 8).back(), 15.0);
+    EXPECT_TRUE(run("grk_decompress -H 1 -i '" + (s / "x.j2k").string() + "' -o '" + (s / "g.png").string() + "'"));
   }
 }
 

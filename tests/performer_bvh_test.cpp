@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/shared_assets.h"
+
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -19,18 +21,8 @@ using performer::parse_bvh;
 
 namespace {
 
-// The CMU files live beside the repository (../shared/assets/bvh); tests skip without them.
-fs::path bvh_asset(const std::string& name) {
-  const char* root = std::getenv("GPUJ2K_SOURCE_DIR");
-  if (root == nullptr) return {};
-  return fs::path(root) / ".." / "shared" / "assets" / "bvh" / name;
-}
-
-#define REQUIRE_BVH_ASSET(path)                                                                                    \
-  do {                                                                                                             \
-    if ((path).empty()) GTEST_SKIP() << "GPUJ2K_SOURCE_DIR is not set (run through ctest); skipping the CMU test"; \
-    if (!fs::exists(path)) GTEST_SKIP() << "motion capture asset " << (path) << " not found; skipping";            \
-  } while (0)
+using test_support::bvh_asset;
+#define REQUIRE_BVH_ASSET(path) REQUIRE_SHARED_FILE(path)
 
 struct CmuFile {
   const char* name;

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/shared_assets.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -34,17 +36,8 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 double rad(double degrees) { return degrees * kPi / 180.0; }
 
-fs::path bvh_asset(const std::string& name) {
-  const char* root = std::getenv("GPUJ2K_SOURCE_DIR");
-  if (root == nullptr) return {};
-  return fs::path(root) / ".." / "shared" / "assets" / "bvh" / name;
-}
-
-#define REQUIRE_BVH_ASSET(path)                                                                                    \
-  do {                                                                                                             \
-    if ((path).empty()) GTEST_SKIP() << "GPUJ2K_SOURCE_DIR is not set (run through ctest); skipping the CMU test"; \
-    if (!fs::exists(path)) GTEST_SKIP() << "motion capture asset " << (path) << " not found; skipping";            \
-  } while (0)
+using test_support::bvh_asset;
+#define REQUIRE_BVH_ASSET(path) REQUIRE_SHARED_FILE(path)
 
 // Row-major 3x3 written the way textbooks print it, turned into glm's column-major storage.
 glm::dmat3 rows(double a, double b, double c, double d, double e, double f, double g, double h, double i) {
