@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <mutex>
+
+#include <unistd.h>
 #include <cmath>
 #include <optional>
 #include <cstdio>
@@ -122,6 +125,34 @@ JasperOptions parse_jasper(const std::vector<std::string>& items) {
   if (rate) j.rates.push_back(*rate);
   return j;
 }
+
+// A progress bar on stderr for encodes that take more than about a second, only when stderr is a
+// terminal: tier-1 over the code-blocks is the long stage, and the encoder reports each one.
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+  ~ProgressBar() {
+    if (shown_) std::fprintf(stderr, "\r%60s\r", "");  // leave the line clean for the summary
+  }
+  void update(std::size_t done, std::size_t total) {
+    if (!enabled_ || total == 0) return;
+    const std::lock_guard lock(mutex_);
+    const auto now = std::chrono::steady_clock::now();
+    if (now - start_ < std::chrono::seconds(1) || now - last_ < std::chrono::milliseconds(100)) return;
+    last_ = now;
+    shown_ = true;
+    const int filled = static_cast<int>(30.0 * static_cast<double>(done) / static_cast<double>(total));
+    std::fprintf(stderr, "\rj2kenc: [%-30s] %3d%% code-blocks", std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                 static_cast<int>(100.0 * static_cast<double>(done) / static_cast<double>(total)));
+    std::fflush(stderr);
+  }
+
+ private:
+  bool enabled_;
+  bool shown_ = false;
+  std::mutex mutex_;
+  std::chrono::steady_clock::time_point start_, last_{};
+};
 
 // The stage report of --timing: one line per stage, or one JSON object, on stderr.
 void print_timing(const std::string& mode, const codec::EncodeReport& r, double read_ms, double output_ms,
@@ -274,7 +305,12 @@ int main(int argc, char** argv) {
     codec::validate(params);
 
     codec::EncodeReport report;
-    const std::vector<std::uint8_t> bytes = codec::encode(image, params, format, &report);
+    std::vector<std::uint8_t> bytes;
+    {
+      ProgressBar bar(!quiet && ::isatty(2));
+      params.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
+      bytes = codec::encode(image, params, format, &report);
+    }
     if (!quiet)
       for (const auto& notice : report.notices) std::fprintf(stderr, "j2kenc: note: %s\n", notice.c_str());
     const auto write_start = Clock::now();

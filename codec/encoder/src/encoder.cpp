@@ -177,8 +177,11 @@ std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& p
   std::vector<int> plan_guard, final_guard;
   for (const auto& q : plan.quantization) plan_guard.push_back(q.guard_bits);
   final_guard = plan_guard;
+  const std::size_t all_blocks = params.progress ? count_code_blocks(plan) : 0;
+  std::size_t blocks_before = 0;
   for (int t = 0; t < count; ++t) {
-    tiles.push_back(code_tile(image, plan, params, t, *dwt.backend, reversible_dwt, pool, report.times));
+    tiles.push_back(code_tile(image, plan, params, t, *dwt.backend, reversible_dwt, pool, report.times, blocks_before, all_blocks));
+    blocks_before += tiles.back().blocks.size();
     for (std::size_t c = 0; c < final_guard.size(); ++c)
       final_guard[c] = std::max(final_guard[c], tiles.back().guard_bits_needed[c]);
   }

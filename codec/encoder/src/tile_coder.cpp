@@ -10,6 +10,7 @@
 #include "codec/encoder/encoder.h"
 #include "dwt_gpu/gpu_backend.h"
 
+#include <atomic>
 #include <chrono>
 #include "codec/encoder/quantization.h"
 #include "dwt/norms.h"
@@ -43,6 +44,12 @@ std::vector<BandOrientation> qcd_order(int levels) {
 int bits_for(std::int64_t magnitude) { return magnitude == 0 ? 0 : 64 - std::countl_zero(static_cast<std::uint64_t>(magnitude)); }
 
 }  // namespace
+
+std::size_t count_code_blocks(const CodingPlan& plan) {
+  std::size_t total = 0;
+  for (int t = 0; t < plan.grid.tile_count(); ++t) total += build_tile(plan.grid, plan.sampling, plan.styles, t).code_blocks;
+  return total;
+}
 
 CodingPlan make_plan(const SourceImage& image, const EncodeParams& params) {
   validate(params);
@@ -114,7 +121,8 @@ CodingPlan make_plan(const SourceImage& image, const EncodeParams& params) {
 }
 
 CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params, int tile_index,
-                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool, StageTimes& times) {
+                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool, StageTimes& times,
+                    std::size_t progress_base, std::size_t progress_total) {
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); };
   auto clock = Clock::now();
@@ -234,6 +242,7 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
                                first_band_index + pb.band});
     }
   }
+  std::atomic<std::size_t> finished{0};
   coded.blocks.resize(tile.code_blocks);
   coded.block_weights.assign(tile.code_blocks, 1.0);
   coded.block_magnitude_bitplanes.assign(tile.code_blocks, 0);
@@ -255,6 +264,7 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
                                            params.block_style);
     eb.missing_msbs -= guard - q.guard_bits;  // expressed against the plan's guard bits for now
     coded.blocks[job.block->index] = std::move(eb);
+    if (params.progress) params.progress(progress_base + finished.fetch_add(1) + 1, progress_total);
     if (!params.lossless) {
       const double step = q.steps[static_cast<std::size_t>(job.band_index)], norm = q.norms[static_cast<std::size_t>(job.band_index)];
       coded.block_weights[job.block->index] = step * step * norm * norm * q.component_weight;

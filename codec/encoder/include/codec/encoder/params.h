@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -43,6 +44,9 @@ struct EncodeParams {
   int guard_bits = -1;                // -1: 2 for lossless, 1 for lossy
   int threads = 0;                    // 0: all hardware threads
   std::string comment = "Created by gpuj2k";
+  // Called as code-blocks finish tier-1, from any worker thread (the callee must be thread-safe):
+  // blocks done so far and the image's total.
+  std::function<void(std::size_t done, std::size_t total)> progress;
 };
 
 // Throws EncodeError for values the standard or this encoder cannot take (code-block sizes that are

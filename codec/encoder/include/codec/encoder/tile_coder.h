@@ -55,6 +55,10 @@ CodingPlan make_plan(const SourceImage& image, const EncodeParams& params);
 // which must take integer planes), quantisation and tier-1 for one tile.
 struct StageTimes;
 CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params, int tile_index,
-                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool, StageTimes& times);
+                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool, StageTimes& times,
+                    std::size_t progress_base = 0, std::size_t progress_total = 0);
+
+// Code-blocks of the whole image, for progress reports.
+std::size_t count_code_blocks(const CodingPlan& plan);
 
 }  // namespace codec
