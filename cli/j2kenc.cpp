@@ -159,7 +159,7 @@ void print_timing(const std::string& mode, const codec::EncodeReport& r, double 
                   double measured_ms) {
   const codec::StageTimes& t = r.times;
   const std::pair<const char*, double> stages[] = {
-      {"input read", read_ms},        {"GL context creation", t.gl_context}, {"shader compilation", t.shader_compile},
+      {"input read", read_ms},        {"setup", t.setup},                   {"GL context creation", t.gl_context}, {"shader compilation", t.shader_compile},
       {"level shift + MCT", t.level_shift}, {"upload", t.upload},           {"DWT compute", t.dwt},
       {"download", t.download},      {"quantization", t.quantization},     {"tier-1", t.tier1},
       {"rate control", t.rate_control}, {"tier-2", t.tier2},             {"output", output_ms}};

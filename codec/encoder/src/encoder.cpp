@@ -164,6 +164,7 @@ std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& p
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); };
   EncodeReport report;
+  const auto setup_start = Clock::now();
   const CodingPlan plan = make_plan(image, params);
   DwtChoice dwt = choose_dwt(params, report);
   report.dwt_backend = dwt.name;
@@ -178,6 +179,7 @@ std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& p
   for (const auto& q : plan.quantization) plan_guard.push_back(q.guard_bits);
   final_guard = plan_guard;
   const std::size_t all_blocks = params.progress ? count_code_blocks(plan) : 0;
+  report.times.setup = since(setup_start) - report.times.gl_context - report.times.shader_compile;
   std::size_t blocks_before = 0;
   for (int t = 0; t < count; ++t) {
     tiles.push_back(code_tile(image, plan, params, t, *dwt.backend, reversible_dwt, pool, report.times, blocks_before, all_blocks));

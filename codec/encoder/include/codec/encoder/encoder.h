@@ -13,6 +13,7 @@ enum class FileFormat { Codestream, Jp2 };
 // Milliseconds spent in each stage of one encode (the thesis' Table 4.1 split, finer). GPU stages
 // are measured with a glFinish before each clock read, so they are real, not estimates.
 struct StageTimes {
+  double setup = 0;            // planning, thread pools and DWT backends (less the GL times below)
   double gl_context = 0;       // creating the GL context (GPU DWT only)
   double shader_compile = 0;   // compiling the DWT shader (GPU DWT only)
   double level_shift = 0;      // DC level shift and component transform
@@ -24,7 +25,7 @@ struct StageTimes {
   double rate_control = 0;     // hulls, allocation, and the trial assemblies that size the file
   double tier2 = 0;            // the final packets and codestream
   double total() const {
-    return gl_context + shader_compile + level_shift + upload + dwt + download + quantization + tier1 + rate_control + tier2;
+    return setup + gl_context + shader_compile + level_shift + upload + dwt + download + quantization + tier1 + rate_control + tier2;
   }
 };
 
