@@ -192,7 +192,7 @@ int main(int argc, char** argv) {
   std::string input, output, tile, tile_origin, origin, codeblock = "64x64", precincts, order = "LRCP", modes, comment;
   std::string rate, ratio, psnr, dwt = "auto";
   std::vector<std::string> jasper;
-  double size = 0, base_step = 1.0 / 512;
+  double size = 0, base_step = 1.0 / 2048;
   bool lossless = false, sop = false, eph = false, quiet = false;
   int levels = 5, threads = 0, guard_bits = -1;
   app.add_option("-i,--input", input, "input image (PNG, PNM, TIFF, BMP, JPEG, ...)")->required();
@@ -213,7 +213,7 @@ int main(int argc, char** argv) {
   app.add_option("--psnr", psnr, "lossy: PSNR targets in dB, one per layer (DB[,DB...])");
   app.add_option("--size", size, "lossy: whole-file size in bytes");
   app.add_option("--dwt", dwt, "where the 9/7 DWT runs: cpu, gpu or auto (default auto: GPU if a context can be made)");
-  app.add_option("--base-step", base_step, "lossy: quantisation step relative to the sample range (default 1/512)");
+  app.add_option("--base-step", base_step, "lossy: quantisation step relative to the sample range (default 1/2048)");
   app.add_option("-O", jasper, "JasPer-style option key=value: rate, numrlvls, mode=int|real, tilewidth, tileheight, cblkwidth, cblkheight, prg, ilyrrates");
   app.add_option("--guard-bits", guard_bits, "guard bits (default 2 lossless, 1 lossy)");
   app.add_option("--comment", comment, "COM marker text (default: the encoder's name)");

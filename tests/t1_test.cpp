@@ -584,3 +584,151 @@ TEST(T1Reconstruction, RejectsInconsistentArguments) {
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Minimal truncation lengths: every non-terminated pass's length is the shortest one that still
+// decodes. At the reported length everything up to the pass decodes right; one byte less (when
+// that is not below the previous pass's length, which is itself minimal, or the segment's start)
+// gets some decision wrong.
+
+namespace {
+
+// Decisions in a few contexts, in stretches of random length with their own skew, from fair to
+// one LPS in thousands: long MPS runs drive the encoder's interval against its upper end, where
+// it writes runs of 0xFF / 0x7F bytes that the decoder's 1-fill synthesises.
+std::vector<Symbol> regime_symbols(std::mt19937& rng, int n, int contexts) {
+  std::vector<Symbol> s;
+  std::uniform_int_distribution<int> pick(0, contexts - 1);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  while (static_cast<int>(s.size()) < n) {
+    const int length = std::uniform_int_distribution<int>(1, 400)(rng);
+    const double p_lps = std::pow(0.5, std::uniform_int_distribution<int>(1, 13)(rng));
+    const int lps = std::uniform_int_distribution<int>(0, 1)(rng);
+    const bool one_context = u(rng) < 0.5;
+    const int fixed = pick(rng);
+    for (int i = 0; i < length && static_cast<int>(s.size()) < n; ++i)
+      s.push_back(Symbol{u(rng) < p_lps ? lps : 1 - lps, one_context ? fixed : pick(rng)});
+  }
+  return s;
+}
+
+TEST(MqCoder, MinimalTruncationLengthsAreExact) {
+  long points = 0, shorter = 0, saved = 0, before_committed = 0, free_points = 0;
+  for (std::uint32_t seed = 300; seed < 380; ++seed) {
+    std::mt19937 rng(seed);
+    const int contexts = 1 + static_cast<int>(seed % 4);
+    const int n = 300 + static_cast<int>(seed * 7919 % 2500);
+    const auto symbols = seed % 3 == 0 ? random_symbols(rng, n, contexts) : regime_symbols(rng, n, contexts);
+    std::vector<std::uint8_t> out;
+    MqEncoder mq(out);
+    mq.start();
+    std::vector<MqContext> cx(static_cast<std::size_t>(contexts));
+    std::vector<codec::t1::MqTruncationPoint> after;  // after symbol i + 1
+    for (const Symbol& s : symbols) {
+      mq.encode(s.bit, cx[static_cast<std::size_t>(s.context)]);
+      after.push_back(mq.truncation_point());
+    }
+    seed % 2 ? mq.flush_predictable() : mq.flush();
+    std::size_t previous = 0;
+    for (std::size_t i = 0; i < after.size(); ++i) {
+      const auto& point = after[i];
+      const std::size_t length = codec::t1::minimal_truncation_length(out, point, out.size(), previous);
+      const std::size_t safe = codec::t1::safe_truncation_length(out, point, out.size());
+      SCOPED_TRACE("seed " + std::to_string(seed) + " after " + std::to_string(i + 1) + " symbols, " +
+                   std::to_string(length) + " of " + std::to_string(out.size()) + " bytes");
+      ASSERT_GE(length, previous);
+      ASSERT_LE(length, safe);
+      ASSERT_TRUE(length == 0 || out[length - 1] != 0xFF);
+      ASSERT_EQ(count_decode_errors(std::span(out.data(), length), symbols, i + 1, contexts), 0);
+      if (length > previous) {
+        ASSERT_GT(count_decode_errors(std::span(out.data(), length - 1), symbols, i + 1, contexts), 0);
+      }
+      ++points;
+      shorter += length < safe;
+      saved += static_cast<long>(safe - length);
+      before_committed += length + 1 < point.committed;
+      free_points += length == 0;
+      previous = length;
+    }
+  }
+  std::printf("%ld points: %ld (%.1f%%) shorter than the safe length, %.3f bytes less on average; %ld cut more than "
+              "one byte before the bytes committed; %ld need no byte\n",
+              points, shorter, 100.0 * static_cast<double>(shorter) / static_cast<double>(points),
+              static_cast<double>(saved) / static_cast<double>(points), before_committed, free_points);
+  EXPECT_GT(before_committed, 0);  // the 1-fill run case is exercised
+}
+
+struct LengthStats {
+  long passes = 0, checked_below = 0, empty = 0;
+};
+
+// Encodes, then decodes every non-terminated pass at its length and one byte less.
+void check_minimal_lengths(const Block& b, int w, int h, Orientation o, BlockStyle style, const std::string& what,
+                           LengthStats& stats) {
+  SCOPED_TRACE(what);
+  const EncodedBlock enc = codec::t1::encode_block(b.c, w, h, o, b.mb, style);
+  const int planes = b.mb - enc.missing_msbs;
+  const int total = static_cast<int>(enc.passes.size());
+  if (total == 0) return;
+  std::vector<std::size_t> full_ends;
+  for (const auto& p : enc.passes)
+    if (p.terminated) full_ends.push_back(p.length);
+  std::vector<std::vector<std::int64_t>> after_pass;
+  t1ref::T1Decoder full(w, h, band_of(o), planes, style, enc.data, full_ends);
+  for (int k = 0; k < total; ++k) {
+    full.decode_pass();
+    after_pass.push_back(full.reconstruction());
+  }
+  ASSERT_EQ(full.segmentation_errors(), 0);
+
+  // Decodes passes 0..k from the first `length` bytes; whether everything came out as in the full decode.
+  auto decodes_right = [&](int k, std::size_t length) {
+    std::vector<std::size_t> ends;
+    for (int j = 0; j < k; ++j)
+      if (enc.passes[static_cast<std::size_t>(j)].terminated) ends.push_back(enc.passes[static_cast<std::size_t>(j)].length);
+    ends.push_back(length);
+    t1ref::T1Decoder dec(w, h, band_of(o), planes, style, std::span(enc.data.data(), length), ends);
+    for (int j = 0; j <= k; ++j) dec.decode_pass();
+    return dec.segmentation_errors() == 0 && dec.reconstruction() == after_pass[static_cast<std::size_t>(k)];
+  };
+  for (int k = 0; k < total; ++k) {
+    const auto& p = enc.passes[static_cast<std::size_t>(k)];
+    if (p.terminated) continue;
+    const std::size_t previous = k > 0 ? enc.passes[static_cast<std::size_t>(k - 1)].length : 0;
+    ++stats.passes;
+    ASSERT_TRUE(decodes_right(k, p.length)) << "pass " << k << " at " << p.length << " bytes";
+    if (p.length == previous) {
+      ++stats.empty;
+      continue;
+    }
+    ++stats.checked_below;
+    ASSERT_FALSE(decodes_right(k, p.length - 1)) << "pass " << k << " also decodes at " << p.length - 1 << " bytes";
+  }
+}
+
+TEST(T1, TruncationLengthsAreMinimal) {
+  std::mt19937 rng(5150);
+  LengthStats stats;
+  const Size sizes[] = {{4, 4}, {1, 1}, {3, 5}, {16, 16}, {7, 64}, {13, 17}, {32, 32}, {64, 64}, {256, 4}, {4, 256}};
+  std::size_t rotation = 0;
+  for (BlockStyle st : styles())
+    for (Size s : sizes)
+      for (Dist d : {Dist::Single, Dist::Sparse, Dist::Dense, Dist::Laplacian})
+        for (Orientation o : orientations_for(s, rotation++)) {
+          const Block b = make_block(d, s.w, s.h, rng);
+          check_minimal_lengths(b, s.w, s.h, o, st, describe(s.w, s.h, o, d, st), stats);
+          if (HasFatalFailure()) return;
+        }
+  for (BlockStyle st : {BlockStyle{}, BlockStyle::from_spcod(0x01), BlockStyle::from_spcod(0x3F)})
+    for (Size s : {Size{16, 16}, Size{64, 64}})
+      for (Dist d : {Dist::Large, Dist::Huge}) {
+        const Block b = make_block(d, s.w, s.h, rng);
+        check_minimal_lengths(b, s.w, s.h, Orientation::HH, st, describe(s.w, s.h, Orientation::HH, d, st), stats);
+        if (HasFatalFailure()) return;
+      }
+  std::printf("%ld non-terminated passes: %ld checked one byte short, %ld add no byte to the previous pass\n",
+              stats.passes, stats.checked_below, stats.empty);
+  EXPECT_GT(stats.checked_below, 1000);
+}
+
+}  // namespace

@@ -29,8 +29,8 @@ void validate(std::span<const std::int32_t> coefficients, int width, int height,
 struct PendingPass {
   int pass;
   bool raw;
-  MqTruncationPoint point;  // MQ passes
-  std::size_t raw_length;   // raw passes
+  MqTruncationPoint point;       // MQ passes
+  RawTruncationPoint raw_point;  // raw passes
 };
 
 // Segment bookkeeping: which coder is open, and the passes waiting for the segment's end.
@@ -54,7 +54,7 @@ class SegmentTracker {
     PassInfo& info = out_.passes[static_cast<std::size_t>(pass)];
     if (!ends_segment) {
       pending_.push_back(PendingPass{pass, raw, raw ? MqTruncationPoint{} : mq_.truncation_point(),
-                                     raw ? raw_.truncation_length() : 0});
+                                     raw ? raw_.truncation_point() : RawTruncationPoint{}});
       return;
     }
     if (raw)
@@ -64,8 +64,13 @@ class SegmentTracker {
     else
       mq_.flush();
     const std::size_t end = out_.data.size();
+    // Shortest lengths that still decode every pass up to theirs, given the finished segment.
+    // Each is at least the previous pass's (the segment's start for its first pass), so lengths
+    // never decrease; the first pass of a block may need no byte at all.
     for (const PendingPass& p : pending_) {
-      const std::size_t length = p.raw ? p.raw_length : safe_truncation_length(out_.data, p.point, end);
+      const std::size_t previous = p.pass > 0 ? out_.passes[static_cast<std::size_t>(p.pass) - 1].length : 0;
+      const std::size_t length = p.raw ? minimal_raw_truncation_length(out_.data, p.raw_point, end, previous)
+                                       : minimal_truncation_length(out_.data, p.point, end, previous);
       out_.passes[static_cast<std::size_t>(p.pass)].length = std::min(length, end);
     }
     pending_.clear();

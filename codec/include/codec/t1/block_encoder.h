@@ -13,9 +13,13 @@ namespace codec::t1 {
 enum class Orientation { LL, HL, LH, HH };
 
 struct PassInfo {
-  // Bytes of the block's codeword needed to decode up to and including this pass: a valid
-  // truncation point (a decoder reading 0xFF past it decodes every pass so far correctly).
-  // Non-decreasing from pass to pass; the last one equals data.size().
+  // Bytes of the block's codeword needed to decode up to and including this pass: the shortest
+  // valid truncation point (a decoder reading 0xFF past it decodes every pass so far correctly,
+  // and one byte fewer would get a decision of these passes wrong, unless that falls below the
+  // previous pass's length). For a pass that ends a codeword segment, the segment's end.
+  // Non-decreasing from pass to pass, possibly equal (a pass whose decisions the decoder's 1-fill
+  // already gets right adds no byte; the first pass may even need none); the last one equals
+  // data.size().
   std::size_t length = 0;
   // Decrease of the squared error this pass buys, on the integer coefficient grid, assuming the
   // decoder reconstructs a significant coefficient at the middle of its remaining uncertainty

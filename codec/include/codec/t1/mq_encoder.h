@@ -21,14 +21,22 @@ struct MqContext {
   constexpr int mps() const { return packed & 1; }
 };
 
-// Where a not-yet-terminated MQ codeword could be cut. `committed` counts the bytes already in
-// the output (including the last one, which a carry may still change); `buffered_bits` counts
-// the code bits still held in the C register that the decoder needs to resolve every symbol
-// coded so far. Resolve it into a byte count with safe_truncation_length() once the segment ends.
+// Where a not-yet-terminated MQ codeword could be cut: the encoder's state once the last symbol
+// before the cut has been coded. `committed` counts the bytes already in the output (including
+// the last one, `last_byte`, which a carry may still change); `buffered_bits` counts the code bits
+// still held in the C register that the decoder needs to resolve every symbol coded so far.
+// `c`, `a` and `ct` are the C, A and CT registers: the encoder's interval is
+// [C, C + A) in units of 2^-(27 - CT) of the last committed byte's least significant bit.
+// Resolve it into a byte count with minimal_truncation_length() (or the cruder
+// safe_truncation_length()) once the segment ends.
 struct MqTruncationPoint {
   std::size_t committed = 0;
   int buffered_bits = 0;
   std::size_t segment_start = 0;
+  std::uint32_t c = 0;
+  std::uint32_t a = 0x8000;
+  int ct = 12;
+  std::uint8_t last_byte = 0;  // out[committed - 1] at the time, when committed > segment_start
 };
 
 // The MQ arithmetic encoder of T.800 Annex C (C.2), writing one codeword segment at a time onto
@@ -75,7 +83,10 @@ class MqEncoder {
 
   // C holds 27 - CT code bits not yet output: BYTEOUT leaves bits 0..18 with CT = 8 (0..19 with
   // CT = 7 after a stuffed byte) and every shift adds one.
-  MqTruncationPoint truncation_point() const { return {out_->size(), 27 - ct_, segment_start_}; }
+  MqTruncationPoint truncation_point() const {
+    const std::uint8_t last = has_last_byte() ? out_->back() : std::uint8_t{0};
+    return {out_->size(), 27 - ct_, segment_start_, c_, a_, ct_, last};
+  }
 
  private:
   // RENORME (C.2.7), shifting in one go up to the next byte boundary instead of bit by bit.
@@ -134,5 +145,16 @@ class MqEncoder {
 // after a 0xFF (the stuffed bit), and the final bytes tell which.
 std::size_t safe_truncation_length(std::span<const std::uint8_t> data, const MqTruncationPoint& point,
                                    std::size_t segment_end);
+
+// The smallest L >= max(lower_bound, point.segment_start) such that a T.800 decoder given only
+// data[point.segment_start, L) of the finished segment (ending at `segment_end`), followed by the
+// 0xFF fill of BYTEIN, decodes every symbol coded before `point` was taken exactly; never more
+// than segment_end. Usually one to three bytes below safe_truncation_length(): the bits of C
+// below the interval's resolution need not be sent when the decoder's 1-fill lands in
+// [C, C + A) anyway, and a run of all-ones bytes before the cut is synthesised by the fill too.
+// Exact (see the derivation in mq_encoder.cpp) and cheap: a few comparisons per point, plus a
+// backward scan over a run of 0xFF / stuffed 0x7F bytes where there is one.
+std::size_t minimal_truncation_length(std::span<const std::uint8_t> data, const MqTruncationPoint& point,
+                                      std::size_t segment_end, std::size_t lower_bound);
 
 }  // namespace codec::t1

@@ -27,7 +27,7 @@ struct EncodeParams {
   // Lossy: quantisation step of the image-domain error, relative to the sample range 2^precision;
   // each subband's step is this divided by its synthesis norm, so every band costs the same
   // squared error per unit of index error and rate control compares them directly.
-  double base_step = 1.0 / 512;
+  double base_step = 1.0 / 2048;
   // Lossy: quality layers, increasing. Empty: one layer keeping every coded pass.
   std::vector<LayerTarget> layers;
   int levels = 5;                     // decomposition levels NL (0..32)
