@@ -14,6 +14,7 @@ PACKAGES=(
   libglm-dev                    # vector maths for the performer
   libgtest-dev                  # tests
   libopenjp2-tools grokj2k-tools  # reference decoders the codec's output is checked against
+  python3 python3-matplotlib    # bench/table41, bench/psnr and Figure 4.13
 )
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update

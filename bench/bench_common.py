@@ -1,0 +1,249 @@
+"""Shared helpers of bench/table41 and bench/psnr: finding the tools, running the four encoders,
+timing them, describing the machine, and printing Markdown tables.
+
+Standard library only (matplotlib is imported by table41 for --plot, and only then)."""
+
+import json
+import os
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import time
+
+PROJECT_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# The encoders both scripts know, in report order: key -> label.
+ENCODERS = {
+    "cpu": "j2kenc --dwt cpu",
+    "gpu": "j2kenc --dwt gpu",
+    "opj": "opj_compress",
+    "grk": "grk_compress",
+}
+
+SOFTWARE_RENDERERS = ("llvmpipe", "softpipe", "swrast", "lavapipe", "swiftshader")
+
+
+class BenchError(Exception):
+    """A failure the scripts report as one line on stderr, exit status 1."""
+
+
+def fail(program, message):
+    print(f"{program}: {' '.join(str(message).split())}", file=sys.stderr)
+    sys.exit(1)
+
+
+# ---------------------------------------------------------------- tools
+
+def default_bin_dir():
+    return os.environ.get("GPUJ2K_BIN") or os.path.join(PROJECT_ROOT, "build", "bin")
+
+
+def project_tool(bin_dir, name):
+    path = os.path.join(bin_dir, name)
+    if not os.access(path, os.X_OK):
+        raise BenchError(f"{path} not found: build the project first (cmake --build build) or pass --bin DIR")
+    return path
+
+
+def system_tool(name):
+    path = shutil.which(name)
+    if not path:
+        raise BenchError(f"{name} not found on PATH (Debian: libopenjp2-tools / grokj2k-tools)")
+    return path
+
+
+def tool_version(path):
+    """'v2.5.0' from the 'compiled against ... library vX' line of opj_compress/grk_compress -h."""
+    try:
+        out = subprocess.run([path, "-h"], capture_output=True, text=True, timeout=30)
+        m = re.search(r"compiled against .*?(v[0-9][0-9.]*)", out.stdout + out.stderr)
+        return m.group(1).rstrip(".") if m else "version unknown"
+    except (OSError, subprocess.SubprocessError):
+        return "version unknown"
+
+
+def parse_list(text, kind, option):
+    try:
+        values = [kind(x) for x in text.split(",") if x.strip() != ""]
+    except ValueError:
+        raise BenchError(f"{option} takes numbers separated by commas, got \"{text}\"")
+    if not values or any(v <= 0 for v in values):
+        raise BenchError(f"{option} takes positive numbers separated by commas, got \"{text}\"")
+    return values
+
+
+def parse_encoders(text):
+    keys = [x.strip() for x in text.split(",") if x.strip()]
+    bad = [k for k in keys if k not in ENCODERS]
+    if bad or not keys:
+        raise BenchError(f"--encoders takes a list of {', '.join(ENCODERS)}, got \"{text}\"")
+    return [k for k in ENCODERS if k in keys]
+
+
+def find_kodak_dir(given=None):
+    """The Kodak photographs: --kodak DIR, else ../shared/testimages/kodak next to the project."""
+    candidates = [given] if given else [os.path.join(PROJECT_ROOT, "..", "shared", "testimages", "kodak")]
+    for d in candidates:
+        if d and os.path.isfile(os.path.join(d, "kodim01.png")):
+            return os.path.realpath(d)
+    return None
+
+
+# ---------------------------------------------------------------- machine
+
+def cpu_model():
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8", errors="replace") as f:
+            for line in f:
+                if line.lower().startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    import platform
+    return platform.processor() or "unknown CPU"
+
+
+def hardware_threads():
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:
+        return os.cpu_count() or 1
+
+
+def renderer_of(dwt_field):
+    """The GL renderer inside j2kenc's JSON 'dwt' field, e.g.
+    'gpu fragment shaders (llvmpipe (LLVM 15.0.6, 256 bits) | 4.5 (Core Profile) Mesa 22.3.6 | egl-surfaceless)'."""
+    prefix = "gpu fragment shaders ("
+    if dwt_field.startswith(prefix) and dwt_field.endswith(")"):
+        return dwt_field[len(prefix):-1]
+    return dwt_field
+
+
+def is_software_renderer(renderer):
+    low = renderer.lower()
+    return any(name in low for name in SOFTWARE_RENDERERS)
+
+
+def renderer_lines(renderer):
+    """The lines every report prints about where the 'GPU' path ran."""
+    if renderer is None:
+        return ["GL renderer: none (the GPU path was not run)"]
+    lines = [f"GL renderer (GPU path): {renderer}"]
+    if is_software_renderer(renderer):
+        lines.append("NOTE: this renderer is a software rasteriser running on the CPU, not a GPU. The 'GPU' "
+                     "timings measure the GPU path's overheads and correctness, not GPU speed.")
+    return lines
+
+
+def machine_lines(threads):
+    return [f"CPU: {cpu_model()}, {hardware_threads()} hardware threads; every encoder runs with {threads} threads"]
+
+
+# ---------------------------------------------------------------- encoders
+
+def _run(cmd, what):
+    start = time.perf_counter()
+    proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, errors="replace")
+    wall = time.perf_counter() - start
+    if proc.returncode != 0:
+        text = (proc.stderr.strip() or proc.stdout.strip()).splitlines()
+        tail = text[-1] if text else "(no output)"
+        raise BenchError(f"{what} failed (exit {proc.returncode}): {tail}")
+    return proc, wall
+
+
+def encode(tools, key, image, output, bpp, ratio, threads):
+    """Encodes `image` into `output` (.j2k) with encoder `key` at `bpp` bits per pixel (j2kenc --rate) or
+    compression ratio `ratio` (opj/grk -r: raw size / coded size). 1 tile, 1 layer, 9/7, 5 levels.
+
+    Returns a dict: wall_s (the whole process), bytes, and for j2kenc the stage times in seconds
+    (total_s, gl_init_s, texture_s, dwt_s, others_s) and the 'dwt' field naming the backend."""
+    if key in ("cpu", "gpu"):
+        cmd = [tools["j2kenc"], "-i", image, "-o", output, "--dwt", key, "--rate", f"{bpp:g}",
+               "--levels", "5", "--threads", str(threads), "--timing=json", "-q"]
+    elif key == "opj":
+        cmd = [tools["opj_compress"], "-i", image, "-o", output, "-I", "-n", "6", "-r", f"{ratio:g}",
+               "-threads", str(threads)]
+    elif key == "grk":
+        cmd = [tools["grk_compress"], "-i", image, "-o", output, "-I", "-n", "6", "-r", f"{ratio:g}",
+               "-H", str(threads)]
+    else:
+        raise BenchError(f"unknown encoder {key}")
+    if os.path.exists(output):
+        os.remove(output)
+    proc, wall = _run(cmd, f"{ENCODERS[key]} on {os.path.basename(image)}")
+    if not os.path.isfile(output):
+        raise BenchError(f"{ENCODERS[key]} wrote no {output}")
+    result = {"wall_s": wall, "bytes": os.path.getsize(output)}
+    if key in ("cpu", "gpu"):
+        report = None
+        for line in proc.stderr.splitlines():
+            if line.startswith("{"):
+                report = json.loads(line)
+        if report is None:
+            raise BenchError("j2kenc printed no --timing=json line")
+        st = report["stages_ms"]
+        gl = (st["GL context creation"] + st["shader compilation"]) / 1000
+        tex = (st["upload"] + st["download"]) / 1000
+        dwt = st["DWT compute"] / 1000
+        total = report["total_ms"] / 1000
+        result.update(total_s=total, gl_init_s=gl, texture_s=tex, dwt_s=dwt,
+                      others_s=total - gl - tex - dwt, dwt_backend=report["dwt"])
+        if key == "gpu" and not report["dwt"].startswith("gpu"):
+            raise BenchError(f"j2kenc --dwt gpu ran its DWT on: {report['dwt']}")
+    else:
+        result["total_s"] = wall
+    return result
+
+
+def decode(tools, codestream, output):
+    if os.path.exists(output):
+        os.remove(output)
+    _run([tools["opj_decompress"], "-i", codestream, "-o", output], f"opj_decompress {os.path.basename(codestream)}")
+    if not os.path.isfile(output):
+        raise BenchError(f"opj_decompress wrote no {output}")
+
+
+def psnr(tools, reference, test):
+    proc, _ = _run([tools["imgpsnr"], reference, test, "--json"], f"imgpsnr {os.path.basename(test)}")
+    r = json.loads(proc.stdout)
+    fl = lambda v: float(v)  # "inf" -> inf
+    r["channel_db"] = [fl(v) for v in r["channel_db"]]
+    r["all_db"] = fl(r["all_db"])
+    return r
+
+
+def median_run(runs, key="total_s"):
+    """The run whose `key` is the median (the lower middle one for an even count), so that a row's
+    stage breakdown comes from one real run and adds up to its total."""
+    ordered = sorted(runs, key=lambda r: r[key])
+    return ordered[(len(ordered) - 1) // 2]
+
+
+def median(values):
+    return statistics.median(values)
+
+
+# ---------------------------------------------------------------- output
+
+def fmt(value, digits=3):
+    if value is None:
+        return "n/a"
+    if isinstance(value, str):
+        return value
+    if value == float("inf"):
+        return "inf"
+    return f"{value:.{digits}f}"
+
+
+def markdown_table(header, rows):
+    lines = ["| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
+    for row in rows:
+        lines.append("| " + " | ".join(str(c) for c in row) + " |")
+    return "\n".join(lines)
+
+
+def progress(program, text):
+    print(f"{program}: {text}", file=sys.stderr, flush=True)
