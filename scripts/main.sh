@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The main job on a fresh Debian 12 machine: set up, build, run a DWT round trip through dwtool on
-# the CPU and the GPU (whatever renderer the GL layer finds), then the DWT benchmark.
+# The main job on a fresh Debian 12 machine: set up, build, run DWT round trips through dwtool on the
+# CPU and the GPU (whatever renderer the GL layer finds), encode an image losslessly and lossily and
+# check both through OpenJPEG, then the DWT benchmark and the thesis' Table 4.1 and 4.2 runs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -23,5 +24,23 @@ round_trip() {  # name, then dwtool options
 round_trip 97-cpu --kernel 97 --levels 5 --backend cpu
 round_trip 97-gpu --kernel 97 --levels 5 --backend gpu
 round_trip 53-cpu --kernel 53 --levels 5 --origin 1,1
+echo "== JPEG 2000: lossless and lossy encodes of the same image, decoded by OpenJPEG"
+"$bin/j2kenc" -i "$work/mix.png" -o "$work/lossless.jp2" --lossless
+opj_decompress -i "$work/lossless.jp2" -o "$work/lossless.png" >/dev/null
+"$bin/imgpsnr" "$work/mix.png" "$work/lossless.png"   # prints inf: bit-exact
+"$bin/j2kenc" -i "$work/mix.png" -o "$work/lossy.j2k" --rate 0.75 --dwt auto --timing
+opj_decompress -i "$work/lossy.j2k" -o "$work/lossy.png" >/dev/null
+"$bin/imgpsnr" "$work/mix.png" "$work/lossy.png"
+
 echo "== DWT benchmark"
 "$bin/dwt_bench" --sizes 512,1024,2048,4096 --reps 3
+
+echo "== Table 4.1 / Figure 4.13 (bench/table41) and Table 4.2 (bench/psnr)"
+python3=/usr/bin/python3
+$python3 bench/table41 --sizes 128,256,512,1024,2048 --runs 3 --plot "$work/figure413.png"
+kodak=../shared/testimages/kodak
+if [ -f "$kodak/kodim01.png" ]; then
+  $python3 bench/psnr "$kodak/kodim01.png" "$kodak/kodim03.png"
+else
+  $python3 bench/psnr
+fi
