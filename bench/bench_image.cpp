@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_images.h"
 #include "imageio/read.h"
 #include "imageio/write.h"
 
@@ -29,46 +30,6 @@ namespace fs = std::filesystem;
 
 constexpr const char* kUsage =
     "usage: bench_image mosaic --size N --kodak DIR -o OUT | bench_image convert IN -o OUT";
-
-imageio::Image mosaic(int size, const fs::path& kodak_dir, int& used) {
-  std::vector<imageio::Image> photos;
-  for (int i = 1; i <= 16; ++i) {
-    char name[32];
-    std::snprintf(name, sizeof name, "kodim%02d.png", i);
-    const fs::path path = kodak_dir / name;
-    if (!fs::exists(path)) continue;
-    photos.push_back(imageio::read_image(path.string()));
-    const auto& p = photos.back();
-    if (p.channels != 3 || p.is_float || p.bits_per_sample != 8)
-      throw std::runtime_error(path.string() + ": expected an 8-bit RGB photograph");
-    if (p.width >= size && p.height >= size) break;  // one photograph is enough
-  }
-  if (photos.empty()) throw std::runtime_error(kodak_dir.string() + ": no kodimNN.png photographs there");
-
-  imageio::Image out;
-  out.width = out.height = size;
-  out.channels = 3;
-  out.bits_per_sample = 8;
-  out.pixels.assign(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * 3, 0.0f);
-  used = 0;
-  int x0 = 0, y0 = 0, row_height = 0;
-  for (std::size_t k = 0; y0 < size; k = (k + 1) % photos.size()) {
-    const auto& p = photos[k];
-    const int w = std::min(p.width, size - x0), h = std::min(p.height, size - y0);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        for (int c = 0; c < 3; ++c) out.at(x0 + x, y0 + y, c) = p.at(x, y, c);
-    ++used;
-    row_height = std::max(row_height, h);
-    x0 += w;
-    if (x0 >= size) {
-      x0 = 0;
-      y0 += row_height;
-      row_height = 0;
-    }
-  }
-  return out;
-}
 
 int usage_error(const std::string& message) {
   std::fprintf(stderr, "bench_image: %s (%s)\n", message.c_str(), kUsage);
@@ -112,7 +73,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     int used = 0;
-    imageio::write_image(output, mosaic(size, kodak, used));
+    imageio::write_image(output, bench::kodak_mosaic(size, kodak, used));
     if (used == 1)
       std::printf("crop of a Kodak photograph (RGB)\n");
     else

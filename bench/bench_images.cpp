@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <stdexcept>
 
 #include "imageio/read.h"
 #include "testimages/patterns.h"
@@ -26,6 +27,45 @@ std::string find_kodak_dir() {
   return "";
 }
 
+imageio::Image kodak_mosaic(int size, const std::string& kodak_dir, int& used) {
+  std::vector<imageio::Image> photos;
+  for (int i = 1; i <= 16; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "kodim%02d.png", i);
+    const fs::path path = fs::path(kodak_dir) / name;
+    if (!fs::exists(path)) continue;
+    photos.push_back(imageio::read_image(path.string()));
+    const auto& p = photos.back();
+    if (p.channels != 3 || p.is_float || p.bits_per_sample != 8)
+      throw std::runtime_error(path.string() + ": expected an 8-bit RGB photograph");
+    if (p.width >= size && p.height >= size) break;  // one photograph is enough
+  }
+  if (photos.empty()) throw std::runtime_error(kodak_dir + ": no kodimNN.png photographs there");
+  imageio::Image out;
+  out.width = out.height = size;
+  out.channels = 3;
+  out.bits_per_sample = 8;
+  out.pixels.assign(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * 3, 0.0f);
+  used = 0;
+  int x0 = 0, y0 = 0, row_height = 0;
+  for (std::size_t k = 0; y0 < size; k = (k + 1) % photos.size()) {
+    const auto& p = photos[k];
+    const int w = std::min(p.width, size - x0), h = std::min(p.height, size - y0);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 3; ++c) out.at(x0 + x, y0 + y, c) = p.at(x, y, c);
+    ++used;
+    row_height = std::max(row_height, h);
+    x0 += w;
+    if (x0 >= size) {
+      x0 = 0;
+      y0 += row_height;
+      row_height = 0;
+    }
+  }
+  return out;
+}
+
 BenchPlane make_plane(int size, const std::string& kodak_dir) {
   BenchPlane plane;
   plane.size = size;
@@ -36,37 +76,11 @@ BenchPlane make_plane(int size, const std::string& kodak_dir) {
     plane.source = "synthetic mix pattern (Kodak photographs not found)";
     return plane;
   }
-  // Luma (ITU-R BT.601 weights) of kodim01..16, tiled left to right, top to bottom.
-  std::vector<imageio::Image> photos;
-  for (int i = 1; i <= 16; ++i) {
-    char name[32];
-    std::snprintf(name, sizeof name, "kodim%02d.png", i);
-    const fs::path path = fs::path(kodak_dir) / name;
-    if (!fs::exists(path)) continue;
-    photos.push_back(imageio::read_image(path.string()));
-    const auto& p = photos.back();
-    if (p.width >= size && p.height >= size) break;  // one photograph is enough
-  }
-  int used = 0, x0 = 0, y0 = 0, row_height = 0;
-  for (std::size_t k = 0; y0 < size; k = (k + 1) % photos.size()) {
-    const auto& p = photos[k];
-    const int w = std::min(p.width, size - x0), h = std::min(p.height, size - y0);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        const float r = p.pixels[(static_cast<std::size_t>(y) * p.width + x) * p.channels];
-        const float g = p.channels >= 3 ? p.pixels[(static_cast<std::size_t>(y) * p.width + x) * p.channels + 1] : r;
-        const float b = p.channels >= 3 ? p.pixels[(static_cast<std::size_t>(y) * p.width + x) * p.channels + 2] : r;
-        plane.samples[static_cast<std::size_t>(y0 + y) * size + (x0 + x)] = std::round(0.299f * r + 0.587f * g + 0.114f * b);
-      }
-    ++used;
-    row_height = std::max(row_height, h);
-    x0 += w;
-    if (x0 >= size) {
-      x0 = 0;
-      y0 += row_height;
-      row_height = 0;
-    }
-  }
+  // Luma (ITU-R BT.601 weights) of the RGB mosaic.
+  int used = 0;
+  const imageio::Image rgb = kodak_mosaic(size, kodak_dir, used);
+  for (std::size_t i = 0; i < plane.samples.size(); ++i)
+    plane.samples[i] = std::round(0.299f * rgb.pixels[3 * i] + 0.587f * rgb.pixels[3 * i + 1] + 0.114f * rgb.pixels[3 * i + 2]);
   plane.source = used == 1 ? "crop of a Kodak photograph (luma)" : "mosaic of " + std::to_string(used) + " Kodak photograph tiles (luma)";
   return plane;
 }
