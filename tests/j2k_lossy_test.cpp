@@ -61,6 +61,26 @@ codec::EncodeParams lossy_at(double bytes) {
 
 fs::path kodak(int index) { return test_support::kodak_photo(index); }
 
+// Every Kodak photograph there is (the suite numbers them 1 to 24; ../shared holds 16); two
+// synthetic stand-ins when there are none. The AddressSanitizer build looks for memory errors, not
+// quality, and runs several times slower: it takes photographs 5 and 13 only, and says so.
+std::vector<int> photo_indices() {
+  std::vector<int> found;
+#if defined(__SANITIZE_ADDRESS__)
+  std::printf("note: sanitizer build: photographs 5 and 13 only (the Release run takes them all)\n");
+  for (int i : {5, 13})
+#else
+  for (int i = 1; i <= 24; ++i)
+#endif
+    if (fs::exists(kodak(i))) found.push_back(i);
+  if (found.empty()) {
+    std::printf("note: no Kodak photographs under %s; using two synthetic images\n",
+                (test_support::shared_dir() / "testimages" / "kodak").string().c_str());
+    return {5, 13};
+  }
+  return found;
+}
+
 // A Kodak photograph when present; otherwise the synthetic mix pattern (which holds a white-noise
 // quadrant, so it reaches much lower PSNR at a given rate than a photograph).
 imageio::Image photo_or_synthetic(int index) {
@@ -70,7 +90,7 @@ imageio::Image photo_or_synthetic(int index) {
 }
 
 TEST(J2kLossy, MeetsByteTargetsAndDecodesEverywhere) {
-  for (int index : {5, 13}) {
+  for (int index : photo_indices()) {
     const imageio::Image img = photo_or_synthetic(index);
     const auto source = codec::to_source_image(img, "image");
     for (double bpp : {0.1875, 0.75, 3.0}) {
@@ -92,35 +112,40 @@ TEST(J2kLossy, MeetsByteTargetsAndDecodesEverywhere) {
 }
 
 // Our PSNR against opj_compress -I at the same ratio, at no more bytes, both decoded by
-// opj_decompress. Over RGB we match or beat it (over the 16 Kodak photographs: +0.026 dB mean at
-// 0.1875 bpp, +0.014 at 0.75, +0.010 at 3); single channels can trade a few hundredths of a dB at
-// high rates, since the allocation minimises the RGB sum.
+// opj_decompress, on every photograph. Over RGB we match or beat it on every image (over the 16
+// Kodak photographs, mean and worst image: +0.026 / +0.009 dB at 0.1875 bpp, +0.019 / +0.011 at
+// 0.75, +0.019 / +0.001 at 3). A single channel can fall a few hundredths of a dB behind at 3 bpp
+// (worst -0.056 dB): the allocation minimises the error summed over R, G and B, and near that
+// optimum the split between Y, Cb and Cr is flat (moving 5 % of the weight from Cb to Y and Cr
+// moves single channels by 0.1 dB for under 0.01 dB overall), so where that split lands is not a
+// quality difference. The bounds below keep both facts from regressing.
 TEST(J2kLossy, QualityTracksOpenJpegAtTheSameSize) {
-  const imageio::Image img = photo_or_synthetic(5);
-  Scratch s;
-  imageio::write_image((s / "in.ppm").string(), img);
-  for (double bpp : {0.1875, 0.75, 3.0}) {
-    SCOPED_TRACE(bpp);
-    const double ratio = 24.0 / bpp;
-    ASSERT_TRUE(run("opj_compress -i '" + (s / "in.ppm").string() + "' -o '" + (s / "opj.j2k").string() +
-                    "' -I -n 6 -r " + std::to_string(ratio)));
-    const auto opj_size = fs::file_size(s / "opj.j2k");
-    const auto bytes = codec::encode(codec::to_source_image(img, "image"), lossy_at(static_cast<double>(opj_size)),
-                                     codec::FileFormat::Codestream);
-    write_bytes(s / "ours.j2k", bytes);
-    const auto ours = psnr(img, decode(s / "ours.j2k", s / "ours.png"), 8);
-    const auto theirs = psnr(img, decode(s / "opj.j2k", s / "opj.png"), 8);
-    std::printf("%.4f bpp: ours %zu bytes R %.3f G %.3f B %.3f all %.3f dB; opj_compress %zu bytes R %.3f G %.3f B %.3f all %.3f dB\n",
-                bpp, bytes.size(), ours[0], ours[1], ours[2], ours.back(), static_cast<std::size_t>(opj_size), theirs[0],
-                theirs[1], theirs[2], theirs.back());
-    EXPECT_LE(bytes.size(), opj_size);
-    EXPECT_GE(ours.back(), theirs.back() - 0.01) << "over RGB";
-    for (std::size_t c = 0; c + 1 < ours.size(); ++c) EXPECT_GT(ours[c], theirs[c] - 0.08) << "channel " << c;
+  for (int index : photo_indices()) {
+    const imageio::Image img = photo_or_synthetic(index);
+    Scratch s;
+    imageio::write_image((s / "in.ppm").string(), img);
+    for (double bpp : {0.1875, 0.75, 3.0}) {
+      SCOPED_TRACE("image " + std::to_string(index) + " at " + std::to_string(bpp) + " bpp");
+      const double ratio = 24.0 / bpp;
+      ASSERT_TRUE(run("opj_compress -i '" + (s / "in.ppm").string() + "' -o '" + (s / "opj.j2k").string() +
+                      "' -I -n 6 -r " + std::to_string(ratio)));
+      const auto opj_size = fs::file_size(s / "opj.j2k");
+      const auto bytes = codec::encode(codec::to_source_image(img, "image"), lossy_at(static_cast<double>(opj_size)),
+                                       codec::FileFormat::Codestream);
+      write_bytes(s / "ours.j2k", bytes);
+      const auto ours = psnr(img, decode(s / "ours.j2k", s / "ours.png"), 8);
+      const auto theirs = psnr(img, decode(s / "opj.j2k", s / "opj.png"), 8);
+      std::printf("image %d, %.4f bpp: ours %zu bytes R %.3f G %.3f B %.3f all %.3f dB; opj_compress %zu bytes R %.3f G %.3f B %.3f all %.3f dB\n",
+                  index, bpp, bytes.size(), ours[0], ours[1], ours[2], ours.back(), static_cast<std::size_t>(opj_size),
+                  theirs[0], theirs[1], theirs[2], theirs.back());
+      EXPECT_LE(bytes.size(), opj_size);
+      EXPECT_GE(bytes.size(), opj_size - opj_size / 1000) << "budget left unspent";
+      EXPECT_GE(ours.back(), theirs.back() - 0.005) << "over RGB";
+      for (std::size_t c = 0; c + 1 < ours.size(); ++c) EXPECT_GT(ours[c], theirs[c] - 0.07) << "channel " << c;
+    }
   }
 }
 
-// --psnr: the measured PSNR (decoded by OpenJPEG, over all RGB samples) lands within 0.3 dB above
-// the target, for single and layered targets.
 TEST(J2kLossy, PsnrTargetsLandJustAbove) {
   const imageio::Image img = photo_or_synthetic(5);
   const auto source = codec::to_source_image(img, "image");

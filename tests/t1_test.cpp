@@ -5,6 +5,7 @@
 // figure checked by decoding the truncated codeword.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -530,6 +531,55 @@ TEST(T1Reconstruction, MatchesReferenceDecoderForLargeMagnitudes) {
           const Block b = make_block(d, s.w, s.h, rng);
           check_reconstruction(b, s.w, s.h, o, st, describe(s.w, s.h, o, d, st));
           if (HasFatalFailure()) return;
+        }
+}
+
+// Irreversible coding hands tier-1 each coefficient's fraction below its index. The codeword must
+// not change, and each pass's reported decrease must then be the true one against the coefficient
+// itself (index + fraction / 256) for a decoder placing fully known magnitudes at index + 1/2:
+// energy minus the decreases so far equals the squared error of reconstruct(..., 0.5) against the
+// real values, at every truncation. Large magnitudes too, where fewer fraction bits fit.
+TEST(T1Reconstruction, FractionsMakeDistortionExactAgainstTheCoefficient) {
+  std::mt19937 rng(7);
+  const Size sizes[] = {{1, 1}, {5, 3}, {16, 16}, {64, 64}};
+  std::size_t rotation = 0;
+  for (BlockStyle st : {BlockStyle{}, BlockStyle::from_spcod(0x01), BlockStyle::from_spcod(0x08)})
+    for (Size s : sizes)
+      for (Dist d : {Dist::Single, Dist::Sparse, Dist::Dense, Dist::Laplacian, Dist::Large, Dist::Huge})
+        for (Orientation o : orientations_for(s, rotation++)) {
+          SCOPED_TRACE(describe(s.w, s.h, o, d, st));
+          const Block b = make_block(d, s.w, s.h, rng);
+          std::vector<std::uint8_t> fractions(b.c.size());
+          for (auto& f : fractions) f = static_cast<std::uint8_t>(std::uniform_int_distribution<int>(0, 255)(rng));
+          const EncodedBlock plain = codec::t1::encode_block(b.c, s.w, s.h, o, b.mb, st);
+          const EncodedBlock enc = codec::t1::encode_block(b.c, s.w, s.h, o, b.mb, st, fractions);
+          ASSERT_EQ(enc.data, plain.data);
+          ASSERT_EQ(enc.passes.size(), plain.passes.size());
+          // The fixed point keeps 31 - planes fraction bits, at most 8: the values the encoder saw.
+          const int planes = b.mb - enc.missing_msbs;
+          const int kept = std::clamp(31 - planes, 0, 8);
+          std::vector<long double> real(b.c.size());
+          long double energy = 0;
+          for (std::size_t i = 0; i < real.size(); ++i) {
+            const long double m = std::fabs(static_cast<long double>(b.c[i])) +
+                                  std::ldexp(static_cast<long double>(fractions[i] >> (8 - kept)), -kept);
+            real[i] = b.c[i] < 0 ? -m : m;
+            energy += m * m;
+          }
+          ASSERT_NEAR(static_cast<double>(energy), enc.energy, 1e-9 * static_cast<double>(energy) + 1e-9);
+          long double claimed = energy;
+          for (int k = 0; k <= static_cast<int>(enc.passes.size()); ++k) {
+            if (k > 0) claimed -= enc.passes[static_cast<std::size_t>(k - 1)].distortion_decrease;
+            std::vector<float> out(b.c.size());
+            codec::t1::reconstruct(b.c, s.w, s.h, o, b.mb, st, k, out, 0.5f);
+            long double error = 0;
+            for (std::size_t i = 0; i < out.size(); ++i) {
+              const long double e = real[i] - static_cast<long double>(out[i]);
+              error += e * e;
+            }
+            ASSERT_LE(std::fabs(static_cast<double>(error - claimed)), 1e-6 * static_cast<double>(energy) + 1e-6)
+                << "after " << k << " passes";
+          }
         }
 }
 

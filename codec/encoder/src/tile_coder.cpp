@@ -136,6 +136,7 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
   // the Mallat layout; lossy planes are quantised band by band into the same integer layout.
   std::vector<std::vector<std::int32_t>> planes(nc);
   std::vector<std::vector<float>> float_planes(params.lossless ? 0 : nc);
+  std::vector<std::vector<std::uint8_t>> fractions(params.lossless ? 0 : nc);  // see quantize()
   for (std::size_t c = 0; c < nc; ++c) {
     const TileComponent& tc = tile.components[c];
     const auto w = static_cast<std::size_t>(tc.rect.width()), h = static_cast<std::size_t>(tc.rect.height());
@@ -185,6 +186,7 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
     }
     clock = Clock::now();
     const ComponentQuantization& q = plan.quantization[c];
+    fractions[c].assign(planes[c].size(), 0);
     int band_index = 0;
     for (const Resolution& res : tc.resolutions)
       for (const Subband& b : res.bands) {
@@ -193,7 +195,8 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
           const std::size_t row = static_cast<std::size_t>(b.layout.y + y) * static_cast<std::size_t>(w) +
                                   static_cast<std::size_t>(b.layout.x);
           for (int x = 0; x < b.layout.width; ++x)
-            planes[c][row + static_cast<std::size_t>(x)] = quantize(float_planes[c][row + static_cast<std::size_t>(x)], inverse_step);
+            planes[c][row + static_cast<std::size_t>(x)] =
+                quantize(float_planes[c][row + static_cast<std::size_t>(x)], inverse_step, fractions[c][row + static_cast<std::size_t>(x)]);
         }
       }
     times.quantization += since(clock);
@@ -254,14 +257,20 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
     const auto w = static_cast<int>(job.block->rect.width()), h = static_cast<int>(job.block->rect.height());
     thread_local std::vector<std::int32_t> buffer;
     buffer.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+    thread_local std::vector<std::uint8_t> fraction_buffer;
+    fraction_buffer.resize(params.lossless ? 0 : buffer.size());
     const std::int64_t x0 = job.band->layout.x + (job.block->rect.x0 - job.band->rect.x0);
     const std::int64_t y0 = job.band->layout.y + (job.block->rect.y0 - job.band->rect.y0);
     for (int y = 0; y < h; ++y)
       std::copy_n(planes[job.component].begin() + static_cast<std::ptrdiff_t>((y0 + y) * tc.rect.width() + x0), w,
                   buffer.begin() + static_cast<std::ptrdiff_t>(y) * w);
+    if (!params.lossless)
+      for (int y = 0; y < h; ++y)
+        std::copy_n(fractions[job.component].begin() + static_cast<std::ptrdiff_t>((y0 + y) * tc.rect.width() + x0), w,
+                    fraction_buffer.begin() + static_cast<std::ptrdiff_t>(y) * w);
     coded.block_magnitude_bitplanes[job.block->index] = guard + job.exponent - 1;
     t1::EncodedBlock eb = t1::encode_block(buffer, w, h, to_t1(job.band->orientation), guard + job.exponent - 1,
-                                           params.block_style);
+                                           params.block_style, fraction_buffer);
     eb.missing_msbs -= guard - q.guard_bits;  // expressed against the plan's guard bits for now
     coded.blocks[job.block->index] = std::move(eb);
     if (params.progress) params.progress(progress_base + finished.fetch_add(1) + 1, progress_total);

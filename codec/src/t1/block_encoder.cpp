@@ -110,15 +110,19 @@ double code_pass(int pass, int plane, bool raw, const BlockView& v, const ZeroCo
 }  // namespace
 
 EncodedBlock encode_block(std::span<const std::int32_t> coefficients, int width, int height, Orientation o,
-                          int magnitude_bitplanes, BlockStyle style) {
+                          int magnitude_bitplanes, BlockStyle style, std::span<const std::uint8_t> fractions) {
   validate(coefficients, width, height, magnitude_bitplanes);
-  CoefficientState state(coefficients, width, height);
+  if (!fractions.empty() && fractions.size() != coefficients.size())
+    throw std::invalid_argument("code-block given " + std::to_string(fractions.size()) + " fractions for " +
+                                std::to_string(coefficients.size()) + " coefficients");
+  CoefficientState state(coefficients, width, height, fractions);
   const int planes = state.bit_planes();
   if (planes > magnitude_bitplanes)
     throw std::invalid_argument("a coefficient magnitude needs " + std::to_string(planes) + " bit-planes, Mb is " +
                                 std::to_string(magnitude_bitplanes));
 
   EncodedBlock out;
+  out.energy = state.energy();
   out.missing_msbs = magnitude_bitplanes - planes;
   const int count = pass_count(planes);
   out.passes.resize(static_cast<std::size_t>(count));

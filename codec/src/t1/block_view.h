@@ -15,6 +15,12 @@ struct BlockView {
   int height = 0;
   std::ptrdiff_t stride = 0;  // width + 2
   bool causal = false;        // vertically causal context formation (D.7)
+  // What distortion is measured on: each magnitude with `fine_bits` bits of the coefficient's
+  // fraction below its quantisation index appended (|c| / step in fixed point). With no fraction
+  // known (reversible coding, where the index is the coefficient) this is `magnitude` itself and
+  // fine_bits is 0.
+  const std::uint32_t* fine = nullptr;
+  int fine_bits = 0;
 
   std::ptrdiff_t index(int x, int y) const { return static_cast<std::ptrdiff_t>(y) * stride + x; }
 };

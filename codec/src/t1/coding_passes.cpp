@@ -37,14 +37,14 @@ inline std::int64_t become_significant(const BlockView& v, std::ptrdiff_t i, int
   const unsigned negative = static_cast<unsigned>(*f >> 15);
   s.sign(negative, *f);
   make_significant(f, v.stride, negative, v.causal && row == 0);
-  return d.significance_gain(v.magnitude[i]);
+  return d.significance_gain(v.fine[i]);
 }
 
 // D.3.1: insignificant coefficients with at least one significant neighbour.
 template <class Symbols>
 double significance_pass_impl(const BlockView v, int plane, const ZeroCodingTable& zc, Symbols s) {
-  const PlaneDistortion d(plane);
-  DistortionSum gain(plane);
+  const PlaneDistortion d(plane + v.fine_bits);
+  DistortionSum gain(plane + v.fine_bits, v.fine_bits);
   // A column has no candidate if all four are significant, or none has a significant neighbour
   // (then none of them becomes significant either, so the column stays as it is).
   auto worth_visiting = [](ColumnSummary c) { return !(c.all & kSig) && (c.any & kNeighbourMask); };
@@ -62,15 +62,15 @@ double significance_pass_impl(const BlockView v, int plane, const ZeroCodingTabl
 // D.3.3: coefficients significant before this bit-plane; context by Table D.4.
 template <class Symbols>
 double refinement_pass_impl(const BlockView v, int plane, Symbols s) {
-  const PlaneDistortion d(plane);
-  DistortionSum gain(plane);
+  const PlaneDistortion d(plane + v.fine_bits);
+  DistortionSum gain(plane + v.fine_bits, v.fine_bits);
   auto worth_visiting = [](ColumnSummary c) { return (c.any & kSig) != 0; };
   for_each_in_scan_order(v, worth_visiting, [&](std::ptrdiff_t i, int /*row*/) {
     std::uint16_t& f = v.flags[i];
     if ((f & (kSig | kVisited)) != kSig) return;
     s.decision(bit_at(v.magnitude[i], plane), refinement_context(f));
     f |= kRefined;
-    gain.add(d.refinement_gain(v.magnitude[i]));
+    gain.add(d.refinement_gain(v.fine[i]));
   });
   return gain.value();
 }
@@ -115,8 +115,8 @@ double refinement_pass_raw(const BlockView& v, int plane, RawWriter& raw) {
   MqEncoder mq = coder;
   MqSymbols s{mq, cx};
   const std::ptrdiff_t stride = v.stride;
-  const PlaneDistortion d(plane);
-  DistortionSum gain(plane);
+  const PlaneDistortion d(plane + v.fine_bits);
+  DistortionSum gain(plane + v.fine_bits, v.fine_bits);
   for (int y0 = 0; y0 < v.height; y0 += 4) {
     const int rows = std::min(4, v.height - y0);
     for (int x = 0; x < v.width; ++x) {

@@ -1,12 +1,19 @@
 #include "coefficient_state.h"
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 
 #include "neighbourhood.h"
 
 namespace codec::t1 {
 
-CoefficientState::CoefficientState(std::span<const std::int32_t> coefficients, int width, int height)
+namespace {
+constexpr int kFractionBits = 8;  // as given: 1/256ths
+}  // namespace
+
+CoefficientState::CoefficientState(std::span<const std::int32_t> coefficients, int width, int height,
+                                   std::span<const std::uint8_t> fractions)
     : width_(width),
       height_(height),
       stride_(width + 2),
@@ -26,11 +33,32 @@ CoefficientState::CoefficientState(std::span<const std::int32_t> coefficients, i
     }
   // The OR of all magnitudes has the same highest set bit as their maximum, and is cheaper.
   bit_planes_ = static_cast<int>(std::bit_width(any_bits));
+
+  if (fractions.empty()) {
+    for (const std::uint32_t m : magnitude_) energy_ += static_cast<double>(m) * static_cast<double>(m);
+    return;
+  }
+  // As many fraction bits as keep the fixed-point magnitude below 2^31, the range the distortion
+  // arithmetic is proven for (distortion.h); all 8 unless the block uses more than 23 planes.
+  fine_bits_ = std::clamp(31 - bit_planes_, 0, kFractionBits);
+  fine_.assign(magnitude_.size(), 0);
+  const double unit = std::ldexp(1.0, -fine_bits_);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const auto i = static_cast<std::size_t>((y + 1) * stride_ + x + 1);
+      const std::uint32_t f = fractions[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                                        static_cast<std::size_t>(x)] >> (kFractionBits - fine_bits_);
+      fine_[i] = magnitude_[i] << fine_bits_ | f;
+      const double u = static_cast<double>(fine_[i]) * unit;
+      energy_ += u * u;
+    }
 }
 
 BlockView CoefficientState::view(bool causal) {
   const std::ptrdiff_t origin = stride_ + 1;
-  return BlockView{flags_.data() + origin, magnitude_.data() + origin, width_, height_, stride_, causal};
+  const std::uint32_t* fine = fine_.empty() ? magnitude_.data() : fine_.data();
+  return BlockView{flags_.data() + origin, magnitude_.data() + origin, width_, height_, stride_, causal,
+                   fine + origin, fine_bits_};
 }
 
 }  // namespace codec::t1

@@ -8,13 +8,19 @@
 namespace codec::t1 {
 
 // Owns a code-block's working arrays (see BlockView): magnitudes and per-coefficient flags, the
-// latter starting with only each coefficient's sign set.
+// latter starting with only each coefficient's sign set, and, when the coefficients' fractions
+// are given, the fixed-point magnitudes distortion is measured on.
 class CoefficientState {
  public:
-  CoefficientState(std::span<const std::int32_t> coefficients, int width, int height);
+  // `fractions`: empty, or one per coefficient (row by row like `coefficients`): the part of
+  // |c| / step below the index, in 1/256ths (see encode_block).
+  CoefficientState(std::span<const std::int32_t> coefficients, int width, int height,
+                   std::span<const std::uint8_t> fractions = {});
 
   // Magnitude bit-planes in use: the position of the highest set bit of any magnitude, plus one.
   int bit_planes() const { return bit_planes_; }
+  // Sum of squared magnitudes in index units, fractions included: the error with nothing decoded.
+  double energy() const { return energy_; }
   BlockView view(bool causal);
 
  private:
@@ -23,7 +29,10 @@ class CoefficientState {
   std::ptrdiff_t stride_;
   std::vector<std::uint16_t> flags_;
   std::vector<std::uint32_t> magnitude_;
+  std::vector<std::uint32_t> fine_;  // empty when no fractions were given
+  int fine_bits_ = 0;
   int bit_planes_ = 0;
+  double energy_ = 0;
 };
 
 }  // namespace codec::t1

@@ -4,11 +4,20 @@
 
 namespace codec::t1 {
 
-// Squared-error bookkeeping on the integer coefficient grid for a decoder that places a
-// significant coefficient at the middle of its remaining uncertainty interval: with the bit-planes
-// down to p known, magnitude m lies in [m_p, m_p + 2^p) (m_p keeps m's bits >= p) and is
-// reconstructed as m_p + 2^(p-1); at p = 0 it is known exactly. The residual m - reconstruction
-// is then (m mod 2^p) - 2^(p-1), or 0 at p = 0, which needs nothing but a mask and an offset.
+// Squared-error bookkeeping on the coefficient grid for a decoder that places a significant
+// coefficient at the middle of its remaining uncertainty interval: with the bit-planes down to p
+// known, magnitude m lies in [m_p, m_p + 2^p) (m_p keeps m's bits >= p) and is reconstructed as
+// m_p + 2^(p-1); at p = 0 it is known exactly. The residual m - reconstruction is then
+// (m mod 2^p) - 2^(p-1), or 0 at p = 0, which needs nothing but a mask and an offset.
+//
+// An irreversible coefficient is not its index: |c| / step = m + f with a fraction f, and after
+// the last plane the decoder reconstructs m + 1/2, leaving f - 1/2. Measuring on the index alone
+// would call that final error 0 and overrate the last planes, which are the most expensive ones;
+// with coarse steps the rate allocator then buys them where finer planes elsewhere would do more.
+// So the passes measure on the magnitude in fixed point, with F fraction bits appended
+// (BlockView::fine): a plane p of the index is plane p + F of that number, and the final
+// mid-point m + 1/2 is the mid-point rule at plane F. Both classes below are built with the
+// shifted plane; DistortionSum scales its result back to index units.
 class PlaneDistortion {
  public:
   explicit PlaneDistortion(int plane)
@@ -44,14 +53,18 @@ class PlaneDistortion {
 // gain (m - r1)^2 - (m - r2)^2 = (r2 - r1)(2m - r1 - r2) with r2 - r1 = +-2^(p-1). Counted in that
 // unit a gain stays below 2^34 in magnitude, so a 64-bit sum cannot overflow however large the
 // block, where the gains themselves (up to 2^62) could.
+// With F fraction bits the fixed-point magnitude still stays below 2^31 (see CoefficientState),
+// so the bound holds unchanged.
 class DistortionSum {
  public:
-  explicit DistortionSum(int plane) : unit_log2_(plane > 0 ? plane - 1 : 0) {}
+  DistortionSum(int plane, int fraction_bits)
+      : unit_log2_(plane > 0 ? plane - 1 : 0), scale_log2_(unit_log2_ - 2 * fraction_bits) {}
   void add(std::int64_t gain) { units_ += gain >> unit_log2_; }  // exact: see above
-  double value() const { return std::ldexp(static_cast<double>(units_), unit_log2_); }
+  double value() const { return std::ldexp(static_cast<double>(units_), scale_log2_); }
 
  private:
   int unit_log2_;
+  int scale_log2_;  // unit, back in index units squared
   std::int64_t units_ = 0;
 };
 

@@ -21,9 +21,11 @@ struct PassInfo {
   // already gets right adds no byte; the first pass may even need none); the last one equals
   // data.size().
   std::size_t length = 0;
-  // Decrease of the squared error this pass buys, on the integer coefficient grid, assuming the
-  // decoder reconstructs a significant coefficient at the middle of its remaining uncertainty
-  // interval (exactly, once every bit-plane is known).
+  // Decrease of the squared error this pass buys, in units of the quantisation step squared,
+  // assuming the decoder reconstructs a significant coefficient at the middle of its remaining
+  // uncertainty interval. Without fractions (reversible coding) a coefficient is its index and is
+  // known exactly once every bit-plane is; with them it is index + fraction, and a decoder that
+  // has every plane places it at index + 1/2 (see encode_block).
   double distortion_decrease = 0.0;
   // Whether the MQ coder (or raw segment) was terminated after this pass.
   bool terminated = false;
@@ -31,6 +33,8 @@ struct PassInfo {
 
 struct EncodedBlock {
   std::vector<std::uint8_t> data;
+  // Squared error with no pass decoded (the coefficients' energy), in the passes' units.
+  double energy = 0.0;
   int missing_msbs = 0;  // zero bit-planes for the packet header: Mb minus the bit-planes coded
   std::vector<PassInfo> passes;
 };
@@ -41,8 +45,13 @@ struct EncodedBlock {
 // The first pass is a cleanup pass on the most significant non-zero bit-plane, then
 // significance propagation, magnitude refinement and cleanup on each plane below: 3 * planes - 2
 // passes. An all-zero block yields no passes, no data and missing_msbs = Mb.
+// `fractions`, for irreversible coding: per coefficient, floor(256 * (|c| / step - index)), the
+// part of the coefficient the index drops. It changes no bit of the codeword, only the distortion
+// each pass reports, which then measures the error against the coefficient itself with the
+// final reconstruction at index + 1/2 (as OpenJPEG and Kakadu decode irreversible bands), rather
+// than against the index. Empty: the index is the coefficient (reversible coding).
 // Throws std::invalid_argument for inconsistent arguments.
 EncodedBlock encode_block(std::span<const std::int32_t> coefficients, int width, int height, Orientation o,
-                          int magnitude_bitplanes, BlockStyle style);
+                          int magnitude_bitplanes, BlockStyle style, std::span<const std::uint8_t> fractions = {});
 
 }  // namespace codec::t1

@@ -21,4 +21,14 @@ inline std::int32_t quantize(float coefficient, float inverse_delta) {
   return coefficient < 0 ? -q : q;
 }
 
+// The same, also returning what the index drops: floor(256 * (|c| / delta - |index|)), for tier-1
+// to measure distortion against the coefficient rather than the index (t1::encode_block).
+inline std::int32_t quantize(float coefficient, float inverse_delta, std::uint8_t& fraction) {
+  const float m = (coefficient < 0 ? -coefficient : coefficient) * inverse_delta;
+  const auto q = static_cast<std::int32_t>(m);
+  const auto f = static_cast<int>((m - static_cast<float>(q)) * 256.0f);
+  fraction = static_cast<std::uint8_t>(f < 0 ? 0 : f > 255 ? 255 : f);
+  return coefficient < 0 ? -q : q;
+}
+
 }  // namespace codec
