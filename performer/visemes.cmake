@@ -23,6 +23,7 @@ target_sources(gpuj2k_performer PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/src/weights_track.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/weights_oculus.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/weights_output.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/src/weights_input.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/blink_generator.cpp)
 # The source tree's data folder, so tests and uninstalled builds find the tables with no setup;
 # $GPUJ2K_PERFORMER_DATA overrides it at run time (viseme_library.h). Nothing is installed.

@@ -19,6 +19,7 @@
 #include "performer/weights_curves.h"
 #include "performer/weights_expression.h"
 #include "performer/weights_oculus.h"
+#include "performer/weights_input.h"
 #include "performer/weights_output.h"
 #include "performer/weights_track.h"
 #include "performer/weights_visemes.h"
@@ -393,6 +394,48 @@ TEST(WeightTrack, CsvAndJson) {
   EXPECT_NE(j.find("\"time\": [0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6]"), std::string::npos) << j;
   EXPECT_NE(j.find("\"S\": [1, 0, 0, 0, 0, 0, 0]"), std::string::npos) << j;
   EXPECT_NE(j.find("\"smile\": [0.3, 0.3, 0.3, 0.3, 0.3, 0.3, 0.3]"), std::string::npos) << j;
+}
+
+// What write_weights_csv writes reads back: same channels, viseme count, times, fps and weights
+// (to the six decimals written). Malformed files name their line.
+TEST(WeightTrack, CsvReadsBack) {
+  performer::TrackOptions options;
+  options.fps = 25.0;
+  options.blink_params.seed = 5;
+  const auto smile = performer::constant_expression("smile", 0.3);
+  const performer::WeightTrack track = performer::build_weight_track(kZungGan, viseme_set(), smile, options);
+  std::ostringstream csv;
+  performer::write_weights_csv(csv, track);
+  const performer::WeightTrack back = performer::parse_weights_csv(csv.str(), "w.csv", viseme_set());
+  EXPECT_EQ(back.channels, track.channels);
+  EXPECT_EQ(back.viseme_channels, track.viseme_channels);
+  EXPECT_NEAR(back.fps, 25.0, 1e-6);
+  ASSERT_EQ(back.frame_count(), track.frame_count());
+  for (std::size_t f = 0; f < track.frame_count(); ++f) {
+    EXPECT_NEAR(back.times[f], track.times[f], 1e-6);
+    for (std::size_t c = 0; c < track.channel_count(); ++c) EXPECT_NEAR(back.frame(f)[c], track.frame(f)[c], 1e-6);
+  }
+
+  auto line_of_error = [](const std::string& text) {
+    try {
+      performer::parse_weights_csv(text, "w.csv", viseme_set());
+    } catch (const performer::VisemeDataError& e) {
+      return e.line();
+    }
+    return -1;
+  };
+  EXPECT_EQ(line_of_error("t,AA\n0,1\n"), 1);                // first column not "time"
+  EXPECT_EQ(line_of_error("time,AA,AA\n0,1,1\n"), 1);        // repeated channel
+  EXPECT_EQ(line_of_error("time,AA\n0,1\n0.1,0.5,2\n"), 3);  // field count
+  EXPECT_EQ(line_of_error("time,AA\n0,1\n0.1,x\n"), 3);      // not a number
+  EXPECT_EQ(line_of_error("time,AA\n0,1\n\n0,1\n"), 4);     // time not increasing
+  EXPECT_EQ(line_of_error("time,AA\n0,1.5\n"), 2);           // outside [0, 1]
+  EXPECT_EQ(line_of_error("time,\"A\n"), 1);                 // unterminated quote
+  EXPECT_EQ(line_of_error("time,AA\n"), 0);                   // no frames
+  EXPECT_EQ(line_of_error(""), 0);                             // no header
+  const auto quoted = performer::parse_weights_csv("time,\"AA\",\"my, \"\"odd\"\" one\"\r\n0,1,0.5\r\n", "q.csv", viseme_set());
+  EXPECT_EQ(quoted.channels, (std::vector<std::string>{"AA", "my, \"odd\" one"}));
+  EXPECT_EQ(quoted.viseme_channels, 1);
 }
 
 TEST(WeightTrack, OculusFold) {
