@@ -139,4 +139,94 @@ TEST(PerformerCli, UsageErrors) {
   EXPECT_NE(missing.err.find("/nonexistent/walk.bvh: cannot open file"), std::string::npos) << missing.err;
 }
 
+// A scratch folder for one test, removed at the end.
+class ScratchFolder {
+ public:
+  explicit ScratchFolder(const std::string& name)
+      : path_(fs::temp_directory_path() / (std::to_string(::getpid()) + "_" + name)) {
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~ScratchFolder() { fs::remove_all(path_); }
+  fs::path operator/(const std::string& leaf) const { return path_ / leaf; }
+
+ private:
+  fs::path path_;
+};
+
+std::size_t count_lines(const std::string& text) {
+  std::size_t n = 0;
+  for (char c : text) n += c == '\n';
+  return n;
+}
+
+// Text to weights to faces: Cantonese 你好 through espeak-ng gives a WAV and a CSV whose first frame
+// shows the n of 你 (viseme N); `face` then writes one PLY per frame of that CSV, each with the
+// procedural head's vertex count in its header.
+TEST(PerformerCli, VisemesThenFace) {
+  const ScratchFolder dir("visemes_face");
+  const RunResult v = run_performer({"visemes", "--lang", "yue", "--text", "你好", "--fps", "25", "-o",
+                                     (dir / "w.csv").string(), "--wav", (dir / "hello.wav").string(), "--no-blink"});
+  ASSERT_EQ(v.exit_code, 0) << v.err;
+  const std::string csv = slurp(dir / "w.csv");
+  ASSERT_EQ(csv.rfind("time,closed,IY,EH,AA,O,UH,Y,L,M,N,NG,F,TH,S,SH,K\n", 0), 0u) << csv;
+  EXPECT_EQ(csv.find("\n0,0,0,0,0,0,0,0,0,0,1,"), csv.find('\n')) << "frame 0 is all N (the n of nei5): " << csv;
+  const std::size_t frames = count_lines(csv) - 1;
+  EXPECT_GE(frames, 8u) << "about 0.45 s of speech at 25 fps";
+  EXPECT_GT(fs::file_size(dir / "hello.wav"), 44u + 2u * 22050u / 4u) << "over a quarter second of 22050 Hz audio";
+
+  const RunResult f = run_performer({"face", "--weights", (dir / "w.csv").string(), "-o", (dir / "frames").string()});
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  std::size_t written = 0;
+  for (const auto& e : fs::directory_iterator(dir / "frames")) written += e.path().extension() == ".ply";
+  EXPECT_EQ(written, frames);
+  const std::string ply = slurp(dir / "frames" / "frame_00000.ply");
+  EXPECT_NE(ply.find("element vertex 9298\n"), std::string::npos) << ply.substr(0, 200);
+
+  const RunResult obj = run_performer({"face", "--weights", (dir / "w.csv").string(), "-o", (dir / "objs").string(),
+                                       "--format", "obj"});
+  ASSERT_EQ(obj.exit_code, 0) << obj.err;
+  EXPECT_TRUE(fs::exists(dir / "objs" / "frame_00000.obj"));
+}
+
+// Bad lip-sync input: one line, exit 1, and no output file left behind.
+TEST(PerformerCli, VisemesAndFaceBadInput) {
+  const ScratchFolder dir("visemes_bad");
+  const std::string out = (dir / "w.csv").string();
+  const RunResult lang = run_performer({"visemes", "--lang", "xx", "--text", "hi", "-o", out});
+  EXPECT_EQ(lang.exit_code, 1);
+  expect_one_error_line(lang);
+  EXPECT_NE(lang.err.find("'xx'"), std::string::npos) << lang.err;
+  EXPECT_FALSE(fs::exists(out));
+
+  const RunResult hanzi = run_performer({"visemes", "--lang", "cmn-latn-pinyin", "--text", "你好", "-o", out});
+  EXPECT_EQ(hanzi.exit_code, 1);
+  expect_one_error_line(hanzi);
+  EXPECT_FALSE(fs::exists(out));
+
+  const RunResult two = run_performer({"visemes", "--lang", "en-us", "--text", "hi", "--rhubarb", "x.tsv", "-o", out});
+  EXPECT_EQ(two.exit_code, 1);
+  expect_one_error_line(two);
+
+  const TempFile keys("keys.txt", "0 0.2 n yue onset\n0.2 zero ei yue nucleus\n");
+  const RunResult k = run_performer({"visemes", "--keyframes", keys.str(), "-o", out});
+  EXPECT_EQ(k.exit_code, 1);
+  expect_one_error_line(k);
+  EXPECT_NE(k.err.find("keys.txt:2:"), std::string::npos) << k.err;
+  EXPECT_FALSE(fs::exists(out));
+
+  const TempFile weights("w.csv", "time,AA\n0,1\n0.04,banana\n");
+  const RunResult f = run_performer({"face", "--weights", weights.str(), "-o", (dir / "frames").string()});
+  EXPECT_EQ(f.exit_code, 1);
+  expect_one_error_line(f);
+  EXPECT_NE(f.err.find("w.csv:3:"), std::string::npos) << f.err;
+
+  const TempFile good("good.csv", "time,AA\n0,1\n");
+  const RunResult gltf = run_performer({"face", "--weights", good.str(), "--gltf", "/nonexistent/avatar.glb", "-o",
+                                        (dir / "frames").string()});
+  EXPECT_EQ(gltf.exit_code, 1);
+  expect_one_error_line(gltf);
+  EXPECT_NE(gltf.err.find("/nonexistent/avatar.glb"), std::string::npos) << gltf.err;
+}
+
 }  // namespace

@@ -105,7 +105,11 @@ WeightTrack parse_weights_csv(std::string_view text, std::string_view file_name,
   }
   if (!header) throw VisemeDataError(file, 0, "no header line (\"time,<channel>,...\")");
   if (track.times.empty()) throw VisemeDataError(file, 0, "no frames after the header");
-  track.fps = track.times.size() > 1 ? 1.0 / (track.times[1] - track.times[0]) : 30.0;
+  // Times are written to the microsecond, so the mean interval gives the rate to about 1e-5 over a
+  // second of frames; rates are chosen in round numbers, so round to a thousandth of a frame.
+  track.fps = track.times.size() > 1
+                  ? std::round(1000.0 * static_cast<double>(track.times.size() - 1) / (track.times.back() - track.times.front())) / 1000.0
+                  : 30.0;
   return track;
 }
 

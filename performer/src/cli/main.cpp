@@ -1,6 +1,8 @@
 // performer: the virtual performer from the command line.
 //
-//   performer info --bvh FILE    what a motion capture file holds
+//   performer info --bvh FILE                                  what a motion capture file holds
+//   performer visemes --lang yue --text "你好" -o weights.csv   lip-sync weights per frame (+ --wav)
+//   performer face --weights weights.csv -o frames/            the deformed head per frame
 //
 // Every failure is one line on stderr starting "performer: " and a non-zero exit: 2 for a command
 // line that does not parse, 1 for anything that goes wrong running it.
@@ -8,10 +10,15 @@
 
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
 #include <string>
 
+#include "face.h"
 #include "info.h"
 #include "performer/bvh.h"
+#include "performer/viseme_library.h"
+#include "performer/weights_input.h"
+#include "visemes.h"
 
 namespace {
 
@@ -23,17 +30,52 @@ std::string one_line(std::string text) {
   return text;
 }
 
+// The lip-sync options `visemes` takes.
+void add_lip_sync_options(CLI::App* app, performer::cli::LipSyncSource& s) {
+  app->add_option("--text", s.text, "text for espeak-ng to speak (yue: hanzi; cmn-latn-pinyin: pinyin with tone digits; ja: kana)");
+  app->add_option("--lang", s.language, "language of --text: yue, cmn-latn-pinyin, ja, en-us");
+  app->add_option("--keyframes", s.keyframes, "timing from a keyframe file instead: start duration symbol language per line");
+  app->add_option("--rhubarb", s.rhubarb, "timing from Rhubarb Lip Sync output instead (TSV or JSON)");
+  app->add_option("--wav", s.wav, "with --text: write the speech as 16-bit mono WAV");
+  app->add_option("--fps", s.fps, "frames per second of the weight track (default 30)");
+  app->add_option("--expression", s.expression, "a constant expression: smile, worry, surprise, anger");
+  app->add_option("--expression-weight", s.expression_weight, "its weight (default 0.5)");
+  app->add_option("--expressions", s.expressions, "expression keyframes instead: time expression weight per line");
+  app->add_option("--curve", s.curve, "viseme weight curve: linear (figure 3.8, default) or exponential (equation 3.8)");
+  app->add_flag("!--no-blink", s.blink, "no eye blinks");
+  app->add_option("--seed", s.seed, "seed of the blink generator (default 1)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "performer: skeletal animation from motion capture (BVH)\n\n"
-      "Example:\n"
-      "  performer info --bvh walk.bvh\n"};
+      "performer: a virtual performer (thesis chapter 3): lip sync from text, a deformation-vector face, motion capture\n\n"
+      "Examples:\n"
+      "  performer info --bvh walk.bvh\n"
+      "  performer visemes --lang yue --text \"你好\" --fps 30 -o weights.csv --wav hello.wav\n"
+      "  performer visemes --lang en-us --text \"Hello there\" --expression smile -o weights.json\n"
+      "  performer face --weights weights.csv -o frames/ --format obj\n"};
   app.require_subcommand(1);
+
   std::string bvh_path;
   CLI::App* info = app.add_subcommand("info", "print a BVH file's joints, channels, frame count and duration");
   info->add_option("--bvh", bvh_path, "BVH motion capture file")->required();
+
+  performer::cli::LipSyncSource lip_sync;
+  std::filesystem::path weights_out;
+  CLI::App* visemes = app.add_subcommand("visemes", "lip-sync blending weights per frame, as CSV or JSON (by -o's extension)");
+  add_lip_sync_options(visemes, lip_sync);
+  visemes->add_option("-o,--output", weights_out, "weights file: .csv or .json")->required();
+
+  std::filesystem::path weights_in;
+  performer::cli::FaceCommand face_command;
+  CLI::App* face = app.add_subcommand("face", "the deformed head for every frame of a weight track, as PLY or OBJ files");
+  face->add_option("--weights", weights_in, "weight track CSV (performer visemes)")->required();
+  face->add_option("-o,--output", face_command.out_dir, "folder for frame_00000.ply, ...")->required();
+  face->add_option("--format", face_command.format, "ply (default) or obj");
+  face->add_option("--gltf", face_command.gltf, "a glTF 2.0 avatar whose morph targets have Oculus or ARKit names (default: the procedural head)");
+  face->add_option("--threads", face_command.threads, "threads (default: all)");
 
   try {
     app.parse(argc, argv);
@@ -48,6 +90,19 @@ int main(int argc, char** argv) {
     if (info->parsed()) {
       const performer::Bvh bvh = performer::read_bvh(bvh_path);
       performer::cli::print_info(bvh, bvh_path, stdout);
+    } else if (visemes->parsed()) {
+      const auto library = performer::VisemeLibrary::load_default();
+      const performer::WeightTrack track = performer::cli::lip_sync_track(lip_sync, library);
+      performer::cli::write_track(track, weights_out);
+      std::fprintf(stderr, "visemes: %zu frames at %g fps, %zu channels written to %s\n", track.frame_count(), track.fps,
+                   track.channel_count(), weights_out.string().c_str());
+    } else if (face->parsed()) {
+      const auto library = performer::VisemeLibrary::load_default();
+      if (weights_in.extension() == ".json")
+        throw std::invalid_argument(weights_in.string() + ": --weights reads the CSV that performer visemes writes (JSON is for other tools)");
+      const performer::WeightTrack track = performer::read_weights_csv(weights_in, library.visemes());
+      const performer::FaceModel model = performer::cli::load_face(face_command.gltf, library.visemes(), stderr);
+      performer::cli::run_face(face_command, track, model, stderr);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "performer: %s\n", one_line(e.what()).c_str());
