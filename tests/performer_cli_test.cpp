@@ -229,4 +229,31 @@ TEST(PerformerCli, VisemesAndFaceBadInput) {
   EXPECT_NE(gltf.err.find("/nonexistent/avatar.glb"), std::string::npos) << gltf.err;
 }
 
+// The whole performer from the command line: speech drives the face while a CMU capture drives
+// the body; one mesh per BVH frame. Bad frame ranges are one line and write nothing.
+TEST(PerformerCli, PoseWithSpeech) {
+  const char* root = std::getenv("GPUJ2K_SOURCE_DIR");
+  if (root == nullptr) GTEST_SKIP() << "GPUJ2K_SOURCE_DIR is not set (run through ctest); skipping the CMU test";
+  const fs::path bvh = fs::path(root) / ".." / "shared" / "assets" / "bvh" / "cmu_131_01.bvh";
+  if (!fs::exists(bvh)) GTEST_SKIP() << "motion capture asset " << bvh << " not found; skipping";
+  const ScratchFolder dir("pose");
+  const RunResult r = run_performer({"pose", "--bvh", bvh.string(), "--frames", "200:202", "--lang", "en-us", "--text",
+                                     "Hello", "-o", (dir / "frames").string(), "--format", "obj"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* name : {"frame_00200.obj", "frame_00201.obj", "frame_00202.obj"})
+    EXPECT_TRUE(fs::exists(dir / "frames" / name)) << name;
+  EXPECT_FALSE(fs::exists(dir / "frames" / "frame_00203.obj"));
+  const std::string obj = slurp(dir / "frames" / "frame_00200.obj");
+  std::size_t vertices = 0;
+  for (std::size_t at = obj.find("\nv "); at != std::string::npos; at = obj.find("\nv ", at + 1)) ++vertices;
+  EXPECT_GT(vertices, 15000u) << "body and head";
+
+  for (const char* range : {"5:2", "x:3", "990:999"}) {
+    const RunResult bad = run_performer({"pose", "--bvh", bvh.string(), "--frames", range, "-o", (dir / "bad").string()});
+    EXPECT_EQ(bad.exit_code, 1) << range;
+    expect_one_error_line(bad);
+    EXPECT_FALSE(fs::exists(dir / "bad")) << range;
+  }
+}
+
 }  // namespace

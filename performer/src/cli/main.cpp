@@ -3,6 +3,7 @@
 //   performer info --bvh FILE                                  what a motion capture file holds
 //   performer visemes --lang yue --text "你好" -o weights.csv   lip-sync weights per frame (+ --wav)
 //   performer face --weights weights.csv -o frames/            the deformed head per frame
+//   performer pose --bvh walk.bvh --frames 0:99 [--text ... --lang ...] -o frames/   the whole performer
 //
 // Every failure is one line on stderr starting "performer: " and a non-zero exit: 2 for a command
 // line that does not parse, 1 for anything that goes wrong running it.
@@ -15,6 +16,7 @@
 
 #include "face.h"
 #include "info.h"
+#include "pose.h"
 #include "performer/bvh.h"
 #include "performer/viseme_library.h"
 #include "performer/weights_input.h"
@@ -46,6 +48,21 @@ void add_lip_sync_options(CLI::App* app, performer::cli::LipSyncSource& s) {
   app->add_option("--seed", s.seed, "seed of the blink generator (default 1)");
 }
 
+// "A:B" (inclusive frame indices) into first and last.
+void parse_frame_range(const std::string& text, int& first, int& last) {
+  const std::size_t colon = text.find(':');
+  std::size_t used_first = 0, used_last = 0;
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument("no colon");
+    first = std::stoi(text.substr(0, colon), &used_first);
+    last = std::stoi(text.substr(colon + 1), &used_last);
+  } catch (const std::exception&) {
+    throw std::invalid_argument("--frames must be A:B (first and last frame, from 0), not \"" + text + "\"");
+  }
+  if (used_first != colon || used_last != text.size() - colon - 1 || first < 0 || last < first)
+    throw std::invalid_argument("--frames must be A:B with 0 <= A <= B, not \"" + text + "\"");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -55,7 +72,8 @@ int main(int argc, char** argv) {
       "  performer info --bvh walk.bvh\n"
       "  performer visemes --lang yue --text \"你好\" --fps 30 -o weights.csv --wav hello.wav\n"
       "  performer visemes --lang en-us --text \"Hello there\" --expression smile -o weights.json\n"
-      "  performer face --weights weights.csv -o frames/ --format obj\n"};
+      "  performer face --weights weights.csv -o frames/ --format obj\n"
+      "  performer pose --bvh 131_01.bvh --frames 0:119 --lang en-us --text \"Hello\" -o frames/\n"};
   app.require_subcommand(1);
 
   std::string bvh_path;
@@ -76,6 +94,20 @@ int main(int argc, char** argv) {
   face->add_option("--format", face_command.format, "ply (default) or obj");
   face->add_option("--gltf", face_command.gltf, "a glTF 2.0 avatar whose morph targets have Oculus or ARKit names (default: the procedural head)");
   face->add_option("--threads", face_command.threads, "threads (default: all)");
+
+  performer::cli::LipSyncSource pose_lip_sync;
+  performer::cli::PoseCommand pose_command;
+  std::string frame_range;
+  std::filesystem::path pose_weights;
+  CLI::App* pose = app.add_subcommand("pose", "the whole performer (generated body, procedural head) per motion capture frame, "
+                                               "face driven by speech or a weight track (equation 3.20), as PLY or OBJ files");
+  pose->add_option("--bvh", pose_command.bvh, "BVH motion capture file")->required();
+  pose->add_option("--frames", frame_range, "first and last frame, A:B, from 0")->required();
+  pose->add_option("-o,--output", pose_command.out_dir, "folder for frame_NNNNN.ply (NNNNN: the BVH frame)")->required();
+  pose->add_option("--format", pose_command.format, "ply (default) or obj");
+  pose->add_option("--threads", pose_command.threads, "threads (default: all)");
+  pose->add_option("--weights", pose_weights, "face weights from a CSV (performer visemes) instead of lip-sync options");
+  add_lip_sync_options(pose, pose_lip_sync);
 
   try {
     app.parse(argc, argv);
@@ -103,6 +135,18 @@ int main(int argc, char** argv) {
       const performer::WeightTrack track = performer::read_weights_csv(weights_in, library.visemes());
       const performer::FaceModel model = performer::cli::load_face(face_command.gltf, library.visemes(), stderr);
       performer::cli::run_face(face_command, track, model, stderr);
+    } else if (pose->parsed()) {
+      parse_frame_range(frame_range, pose_command.first_frame, pose_command.last_frame);
+      const bool lip_sync = !pose_lip_sync.text.empty() || !pose_lip_sync.keyframes.empty() || !pose_lip_sync.rhubarb.empty();
+      if (lip_sync && !pose_weights.empty()) throw std::invalid_argument("give --weights or lip-sync options, not both");
+      performer::WeightTrack track;
+      if (lip_sync || !pose_weights.empty()) {
+        const auto library = performer::VisemeLibrary::load_default();
+        track = lip_sync ? performer::cli::lip_sync_track(pose_lip_sync, library)
+                         : performer::read_weights_csv(pose_weights, library.visemes());
+        pose_command.weights = &track;
+      }
+      performer::cli::run_pose(pose_command, stderr);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "performer: %s\n", one_line(e.what()).c_str());
