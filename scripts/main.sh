@@ -44,3 +44,15 @@ if [ -f "$kodak/kodim01.png" ]; then
 else
   $python3 bench/psnr
 fi
+
+echo "== The virtual performer: speech to visemes to face, motion capture to the whole character"
+"$bin/performer" visemes --lang yue --text "你好" --fps 30 -o "$work/weights.csv" --wav "$work/hello.wav"
+"$bin/performer" face --weights "$work/weights.csv" -o "$work/face_frames"
+bvh=../shared/assets/bvh/cmu_131_01.bvh
+if [ -f "$bvh" ]; then
+  "$bin/performer" info --bvh "$bvh"
+  "$bin/performer" pose --bvh "$bvh" --frames 0:29 --lang en-us --text "Hello, I am the performer" -o "$work/pose_frames"
+else
+  echo "note: $bvh not found; skipping performer pose"
+fi
+"$bin/performer_bench"
