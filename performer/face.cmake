@@ -7,7 +7,7 @@
 # glTF goes through TinyGLTF. Debian's libtinygltf-dev ships it as a shared library with a CMake
 # package, so nothing here defines TINYGLTF_IMPLEMENTATION and neither nlohmann-json nor stb
 # headers are needed at build time. The glTF accessor reader, GltfError and area_weighted_normals
-# come from the body's sources (body.cmake: gltf_accessor.cpp, gltf_skin_read.cpp,
+# come from the body's sources (body.cmake: gltf_accessor.cpp, gltf_load.cpp, gltf_skin_read.cpp,
 # mesh_normals.cpp), which are part of the same library.
 find_package(TinyGLTF CONFIG)
 if(NOT TinyGLTF_FOUND)

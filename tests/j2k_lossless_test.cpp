@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "codec/encoder/encoder.h"
+#include "support/external_decode.h"
 #include "support/scratch_dir.h"
 #include "support/shared_assets.h"
 #include "codec/structure/error.h"
@@ -28,19 +29,7 @@ using test_support::write_bytes;
 
 codec::SourceImage to_source(const imageio::Image& img) { return codec::to_source_image(img, "generated"); }
 
-// Decodes `file` with `tool` into a PNG (which keeps 8/16 bits and alpha) and returns its samples.
-imageio::Image decode_with(const std::string& tool, const fs::path& file, const fs::path& out,
-                           const std::string& extra = "") {
-  const std::string cmd = tool + " -i '" + file.string() + "' -o '" + out.string() + "' " + extra + " >'" +
-                          out.string() + ".log' 2>&1";
-  if (std::system(cmd.c_str()) != 0) {
-    std::ifstream log(out.string() + ".log");
-    std::stringstream ss;
-    ss << log.rdbuf();
-    throw std::runtime_error(tool + " failed on " + file.string() + ": " + ss.str());
-  }
-  return imageio::read_image(out.string());
-}
+using test_support::decode_with;
 
 struct Case {
   std::string name;

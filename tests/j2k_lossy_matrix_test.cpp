@@ -18,6 +18,7 @@
 #include "codec/encoder/encoder.h"
 #include "imageio/read.h"
 #include "imageio/write.h"
+#include "support/external_decode.h"
 #include "support/scratch_dir.h"
 #include "testimages/patterns.h"
 
@@ -38,18 +39,7 @@ double psnr(const imageio::Image& a, const imageio::Image& b, int bits) {
   return mse == 0 ? INFINITY : 10 * std::log10(peak * peak / mse);
 }
 
-imageio::Image decode_with(const std::string& tool, const fs::path& file, const fs::path& out,
-                           const std::string& extra = "") {
-  const std::string cmd = tool + " -i '" + file.string() + "' -o '" + out.string() + "' " + extra + " >'" +
-                          out.string() + ".log' 2>&1";
-  if (std::system(cmd.c_str()) != 0) {
-    std::ifstream log(out.string() + ".log");
-    std::stringstream ss;
-    ss << log.rdbuf();
-    throw std::runtime_error(tool + " failed on " + file.string() + ": " + ss.str());
-  }
-  return imageio::read_image(out.string());
-}
+using test_support::decode_with;
 
 struct Case {
   Case(std::string n, imageio::Image i, codec::EncodeParams p) : name(std::move(n)), image(std::move(i)), params(std::move(p)) {}

@@ -1,60 +1,18 @@
 #include "atomic_file.h"
 
-#include <fstream>
-#include <random>
-#include <stdexcept>
-#include <string>
-#include <system_error>
+#include <sstream>
+
+#include "atomic_replace.h"
 
 namespace performer::detail {
 
-namespace {
-
-// A name no concurrent writer of the same file picks: the target's name plus a random suffix.
-std::filesystem::path temporary_name(const std::filesystem::path& path) {
-  std::random_device rd;
-  const auto suffix = std::to_string(rd()) + std::to_string(rd());
-  std::filesystem::path tmp = path;
-  tmp += ".tmp" + suffix;
-  return tmp;
-}
-
-}  // namespace
-
+// Built on replace_file_atomically, the one implementation of the temporary-then-rename dance: the
+// content is formatted in memory first (meshes of a few megabytes), so a failure while formatting
+// leaves no file at all.
 void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& fill) {
-  const std::filesystem::path tmp = temporary_name(path);
-  auto discard = [&tmp] {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-  };
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(path.string() + ": cannot create a temporary file in its folder");
-    try {
-      fill(out);
-      out.flush();
-    } catch (...) {
-      out.close();
-      discard();
-      throw;
-    }
-    if (!out) {
-      out.close();
-      discard();
-      throw std::runtime_error(path.string() + ": write failed (disk full?)");
-    }
-    out.close();
-    if (!out) {
-      discard();
-      throw std::runtime_error(path.string() + ": write failed while closing");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    discard();
-    throw std::runtime_error(path.string() + ": cannot move the finished file into place: " + ec.message());
-  }
+  std::ostringstream content(std::ios::binary);
+  fill(content);
+  replace_file_atomically(path, content.view());
 }
 
 }  // namespace performer::detail

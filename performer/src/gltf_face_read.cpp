@@ -10,6 +10,7 @@
 
 #include "face_normals.h"
 #include "gltf_accessor.h"
+#include "gltf_load.h"
 #include "performer/gltf_face.h"
 #include "performer/gltf_skin.h"
 #include "performer/procedural_head.h"
@@ -17,39 +18,6 @@
 namespace performer {
 
 namespace {
-
-// tinygltf's messages can span lines; ours are one line.
-std::string one_line(std::string text) {
-  for (char& c : text)
-    if (c == '\n' || c == '\r') c = ' ';
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
-  return text;
-}
-
-// Faces need no textures: accept every image without decoding it, so an avatar's (possibly large
-// or unsupported) images neither cost time nor fail the load.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
-  return true;
-}
-
-tinygltf::Model load_model(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  std::ifstream probe(path, std::ios::binary);
-  if (!probe) throw GltfError(file, "cannot open file");
-  // Binary glTF starts with the magic "glTF", whatever the file is called.
-  char magic[4] = {};
-  probe.read(magic, sizeof magic);
-  const bool binary = probe.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
-  probe.close();
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(skip_image, nullptr);
-  tinygltf::Model model;
-  std::string err, warn;
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file)
-                         : loader.LoadASCIIFromFile(&model, &err, &warn, file);
-  if (!ok) throw GltfError(file, "not a readable glTF 2.0 file: " + (err.empty() ? std::string("unknown error") : one_line(err)));
-  return model;
-}
 
 bool has_targets(const tinygltf::Mesh& mesh) {
   return std::any_of(mesh.primitives.begin(), mesh.primitives.end(),
@@ -322,7 +290,7 @@ std::string join(const std::vector<std::string>& items, std::size_t limit) {
 GltfFace load_gltf_face(const std::filesystem::path& path, const VisemeSet& set, const MorphMapping& mapping,
                         const GltfFaceOptions& options) {
   const std::string file = path.string();
-  const tinygltf::Model model = load_model(path);
+  const tinygltf::Model model = detail::load_gltf_model(path);
   const std::size_t mesh_index = find_mesh(model, options.mesh, file);
   const tinygltf::Mesh& mesh = model.meshes[mesh_index];
   GltfFace out;

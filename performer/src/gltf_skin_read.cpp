@@ -15,6 +15,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gltf_accessor.h"
+#include "gltf_load.h"
 #include "performer/gltf_skin.h"
 #include "performer/mesh_normals.h"
 #include "performer/ssd_weights.h"
@@ -27,31 +28,6 @@ GltfError::GltfError(std::string file, std::string problem)
 namespace {
 
 using detail::read_accessor;
-
-// tinygltf's messages can span lines; ours are one line.
-std::string first_line(const std::string& text) {
-  std::string line = text.substr(0, text.find_first_of("\r\n"));
-  while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
-  return line;
-}
-
-tinygltf::Model load_model(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  std::ifstream probe(path, std::ios::binary);
-  if (!probe) throw GltfError(file, "cannot open file");
-  // Binary glTF starts with the magic "glTF", whatever the file is called.
-  char magic[4] = {};
-  probe.read(magic, sizeof magic);
-  const bool binary = probe.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
-  probe.close();
-  tinygltf::TinyGLTF loader;
-  tinygltf::Model model;
-  std::string err, warn;
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file)
-                         : loader.LoadASCIIFromFile(&model, &err, &warn, file);
-  if (!ok) throw GltfError(file, err.empty() ? "not a glTF 2.0 file" : first_line(err));
-  return model;
-}
 
 struct Trs {
   glm::vec3 translation{0.0f};
@@ -315,7 +291,7 @@ void read_mesh(const tinygltf::Model& model, int mesh_index, SkinnedMesh& out, c
 
 SkinnedMesh read_gltf_skinned(const std::filesystem::path& path) {
   const std::string file = path.string();
-  const tinygltf::Model model = load_model(path);
+  const tinygltf::Model model = detail::load_gltf_model(path);
   int node_index = -1;
   for (std::size_t n = 0; n < model.nodes.size() && node_index < 0; ++n)
     if (model.nodes[n].mesh >= 0 && model.nodes[n].skin >= 0) node_index = static_cast<int>(n);
