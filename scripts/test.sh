@@ -2,15 +2,16 @@
 # The test job on a fresh Debian 12 machine: set up, then build and run the whole suite twice, as a
 # Release build and under AddressSanitizer + UndefinedBehaviorSanitizer. GPU tests run on whatever
 # the GL layer finds (Mesa llvmpipe on machines without a GPU): they are never skipped for that.
+# Test programs run side by side (ctest -j): many wait on outside decoders, and no test times itself.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 
 bash scripts/build.sh build
-(cd build && ctest --output-on-failure --timeout 900)
+(cd build && ctest --output-on-failure --timeout 900 -j "$(nproc)")
 
 bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGPUJ2K_SANITIZE=ON
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
-(cd build-asan && ctest --output-on-failure --timeout 1800)
+(cd build-asan && ctest --output-on-failure --timeout 1800 -j "$(nproc)")
