@@ -20,6 +20,7 @@ target_sources(gpuj2k_performer PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/src/skeleton_skin.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/gltf_accessor.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/gltf_load.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/src/gltf_buffer_view.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/gltf_skin_read.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/gltf_skin_write.cpp)
 # Private: no TinyGLTF type appears in the performer's headers.

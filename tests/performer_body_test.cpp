@@ -6,6 +6,7 @@
 
 #include "support/scratch_dir.h"
 #include "support/shared_assets.h"
+#include "support/skeleton_joints.h"
 
 #include <algorithm>
 #include <chrono>
@@ -136,14 +137,7 @@ void expect_unit_normals(const TriangleMesh& mesh, const std::string& label) {
 
 // --- Skeletons ------------------------------------------------------------------------------------
 
-performer::Joint joint(const std::string& name, int parent, glm::vec3 offset, bool end_site = false) {
-  performer::Joint j;
-  j.name = name;
-  j.parent = parent;
-  j.offset = offset;
-  j.end_site = end_site;
-  return j;
-}
+using test_support::joint;
 
 // Root, a joint 10 up, an end site 10 further: two bones in a straight line.
 Skeleton two_bone_skeleton() {

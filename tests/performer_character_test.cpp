@@ -6,6 +6,7 @@
 
 #include "support/scratch_dir.h"
 #include "support/shared_assets.h"
+#include "support/skeleton_joints.h"
 
 #include <algorithm>
 #include <cmath>
@@ -53,14 +54,7 @@ FaceModel head(int rings, int segments) {
   return performer::build_procedural_head(viseme_set(), p);
 }
 
-performer::Joint joint(const std::string& name, int parent, glm::vec3 offset, bool end_site = false) {
-  performer::Joint j;
-  j.name = name;
-  j.parent = parent;
-  j.offset = offset;
-  j.end_site = end_site;
-  return j;
-}
+using test_support::joint;
 
 // A small figure in centimetres: hips, spine, neck, head, one arm, one leg. Enough for the body to
 // have a neck to put the head on and joints that blend.

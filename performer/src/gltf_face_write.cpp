@@ -9,6 +9,7 @@
 #include <tiny_gltf.h>
 
 #include "atomic_file.h"
+#include "gltf_buffer_view.h"
 #include "performer/gltf_face.h"
 #include "performer/gltf_skin.h"
 
@@ -55,20 +56,8 @@ class GltfBuilder {
   }
 
  private:
-  // Appends raw little-endian bytes (floats and uint32 are stored as they are in memory on every
-  // machine this builds for) as a new buffer view. Sizes are multiples of 4, so every view stays
-  // aligned for its components as glTF requires.
   int append(const void* bytes, std::size_t size, int target) {
-    std::vector<unsigned char>& data = model_.buffers.front().data;
-    tinygltf::BufferView view;
-    view.buffer = 0;
-    view.byteOffset = data.size();
-    view.byteLength = size;
-    view.target = target;
-    const auto* p = static_cast<const unsigned char*>(bytes);
-    data.insert(data.end(), p, p + size);
-    model_.bufferViews.push_back(view);
-    return static_cast<int>(model_.bufferViews.size() - 1);
+    return detail::append_buffer_view(model_, bytes, size, target);
   }
 
   tinygltf::Model& model_;

@@ -10,26 +10,13 @@
 
 #include <tiny_gltf.h>
 
+#include "gltf_buffer_view.h"
 #include "performer/gltf_skin.h"
 
 namespace performer {
 
 namespace {
 
-// Appends bytes to the one buffer as a new buffer view, 4-byte aligned as accessors require.
-int add_view(tinygltf::Model& model, const void* data, std::size_t bytes, int target) {
-  std::vector<unsigned char>& buffer = model.buffers[0].data;
-  buffer.resize((buffer.size() + 3) / 4 * 4, 0);
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = buffer.size();
-  view.byteLength = bytes;
-  view.target = target;
-  const auto* p = static_cast<const unsigned char*>(data);
-  buffer.insert(buffer.end(), p, p + bytes);
-  model.bufferViews.push_back(view);
-  return static_cast<int>(model.bufferViews.size() - 1);
-}
 
 int add_accessor(tinygltf::Model& model, int view, int component_type, int type, std::size_t count) {
   tinygltf::Accessor accessor;
@@ -69,7 +56,7 @@ void write_gltf_skinned(const std::filesystem::path& path, const SkinnedMesh& sk
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
   {
-    const int view = add_view(model, mesh.positions.data(), vertices * sizeof(glm::vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
+    const int view = detail::append_buffer_view(model, mesh.positions.data(), vertices * sizeof(glm::vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
     const int accessor = add_accessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, vertices);
     // POSITION must carry its bounds (glTF 2.0, 3.7.2.1).
     glm::vec3 lo(0.0f), hi(0.0f);
@@ -83,7 +70,7 @@ void write_gltf_skinned(const std::filesystem::path& path, const SkinnedMesh& sk
     primitive.attributes["POSITION"] = accessor;
   }
   if (!mesh.normals.empty()) {
-    const int view = add_view(model, mesh.normals.data(), vertices * sizeof(glm::vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
+    const int view = detail::append_buffer_view(model, mesh.normals.data(), vertices * sizeof(glm::vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
     primitive.attributes["NORMAL"] =
         add_accessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, vertices);
   }
@@ -99,16 +86,16 @@ void write_gltf_skinned(const std::filesystem::path& path, const SkinnedMesh& sk
         set_weights[v * 4 + k] = skinned.joint_weights[v * slots + set * 4 + k];
       }
     const int joint_view =
-        add_view(model, set_joints.data(), set_joints.size() * sizeof(std::uint16_t), TINYGLTF_TARGET_ARRAY_BUFFER);
+        detail::append_buffer_view(model, set_joints.data(), set_joints.size() * sizeof(std::uint16_t), TINYGLTF_TARGET_ARRAY_BUFFER);
     const int weight_view =
-        add_view(model, set_weights.data(), set_weights.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+        detail::append_buffer_view(model, set_weights.data(), set_weights.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
     primitive.attributes["JOINTS_" + std::to_string(set)] =
         add_accessor(model, joint_view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, vertices);
     primitive.attributes["WEIGHTS_" + std::to_string(set)] =
         add_accessor(model, weight_view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, vertices);
   }
   {
-    const int view = add_view(model, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t),
+    const int view = detail::append_buffer_view(model, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t),
                               TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
     primitive.indices =
         add_accessor(model, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, mesh.indices.size());
@@ -119,7 +106,7 @@ void write_gltf_skinned(const std::filesystem::path& path, const SkinnedMesh& sk
 
   tinygltf::Skin skin;
   {
-    const int view = add_view(model, skinned.inverse_bind.data(), joints * sizeof(glm::mat4), 0);
+    const int view = detail::append_buffer_view(model, skinned.inverse_bind.data(), joints * sizeof(glm::mat4), 0);
     skin.inverseBindMatrices = add_accessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, joints);
   }
 
