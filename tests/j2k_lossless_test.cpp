@@ -11,6 +11,7 @@
 
 #include "codec/encoder/encoder.h"
 #include "support/external_decode.h"
+#include "support/option_matrix.h"
 #include "support/scratch_dir.h"
 #include "support/shared_assets.h"
 #include "codec/structure/error.h"
@@ -116,8 +117,7 @@ TEST(J2kLossless, ComponentsAndDepths) {
 }
 
 TEST(J2kLossless, ThinAndTinyImagesAtEveryLevelCount) {
-  const std::pair<int, int> sizes[] = {{1, 1}, {1, 37}, {37, 1}, {3, 5}, {127, 129}, {1000, 1}};
-  for (auto [w, h] : sizes)
+  for (auto [w, h] : test_support::kThinAndTinySizes)
     for (int levels = 0; levels <= 6; ++levels) {
       codec::EncodeParams p = lossless();
       p.levels = levels;
@@ -130,20 +130,11 @@ TEST(J2kLossless, ThinAndTinyImagesAtEveryLevelCount) {
 }
 
 TEST(J2kLossless, TilesWithImageAndTileOffsets) {
-  struct T { std::int64_t ox, oy, tw, th, tx, ty; int levels; };
-  const T tilings[] = {{0, 0, 32, 32, 0, 0, 3}, {3, 1, 16, 16, 2, 0, 3}, {5, 7, 17, 9, 4, 6, 3}, {1, 1, 1, 64, 1, 0, 3},
-                       {9, 2, 7, 5, 9, 1, 2}};
-  for (const T& t : tilings) {
+  for (const test_support::Tiling& t : test_support::kTilings) {
     codec::EncodeParams p = lossless();
-    p.image_x0 = t.ox, p.image_y0 = t.oy, p.tile_width = t.tw, p.tile_height = t.th, p.tile_x0 = t.tx, p.tile_y0 = t.ty;
-    p.levels = t.levels;
-    std::ostringstream name;
-    name << "origin " << t.ox << "," << t.oy << " tiles " << t.tw << "x" << t.th << " at " << t.tx << "," << t.ty;
-    std::ostringstream opj;
-    opj << "-n " << p.levels + 1 << " -t " << t.tw << "," << t.th << " -d " << t.ox << "," << t.oy << " -T " << t.tx << ","
-        << t.ty;
-    check_lossless(make_case(name.str(), generated(45, 38, 1, 8), p, codec::FileFormat::Codestream, opj.str()));
-    check_lossless(make_case(name.str() + " RGB", generated(45, 38, 3, 8), p, codec::FileFormat::Codestream, opj.str()));
+    t.apply(p);
+    check_lossless(make_case(t.name(), generated(45, 38, 1, 8), p, codec::FileFormat::Codestream, t.opj_options()));
+    check_lossless(make_case(t.name() + " RGB", generated(45, 38, 3, 8), p, codec::FileFormat::Codestream, t.opj_options()));
   }
 }
 
@@ -151,20 +142,13 @@ TEST(J2kLossless, ProgressionOrdersWithPrecincts) {
   for (int o = 0; o < 5; ++o)
     for (bool precincts : {false, true}) {
       codec::EncodeParams p = lossless();
-      p.order = static_cast<codec::Progression>(o);
-      p.levels = 4;
-      p.image_x0 = 3;
-      p.image_y0 = 5;
-      if (precincts) p.precincts = {{32, 32}, {16, 16}, {8, 8}};
-      p.codeblock_width = 8;
-      p.codeblock_height = 8;
+      test_support::apply_order(p, o, precincts);
       check_lossless(make_case("order " + std::to_string(o) + (precincts ? " precincts" : ""), generated(70, 53, 3, 8), p));
     }
 }
 
 TEST(J2kLossless, CodeBlockSizes) {
-  const std::pair<int, int> sizes[] = {{4, 4}, {8, 8}, {16, 16}, {32, 32}, {64, 64}, {4, 64}, {64, 4}, {128, 32}, {16, 256}, {1024, 4}};
-  for (auto [w, h] : sizes) {
+  for (auto [w, h] : test_support::kCodeBlockSizes) {
     codec::EncodeParams p = lossless();
     p.codeblock_width = w;
     p.codeblock_height = h;

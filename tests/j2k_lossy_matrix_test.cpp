@@ -19,6 +19,7 @@
 #include "imageio/read.h"
 #include "imageio/write.h"
 #include "support/external_decode.h"
+#include "support/option_matrix.h"
 #include "support/scratch_dir.h"
 #include "testimages/patterns.h"
 
@@ -119,8 +120,7 @@ TEST(J2kLossyMatrix, ComponentsAndDepthsInBothFormats) {
 }
 
 TEST(J2kLossyMatrix, ThinAndTinyImagesAtEveryLevelCount) {
-  const std::pair<int, int> sizes[] = {{1, 1}, {1, 37}, {37, 1}, {3, 5}, {127, 129}, {1000, 1}};
-  for (auto [w, h] : sizes)
+  for (auto [w, h] : test_support::kThinAndTinySizes)
     for (int levels = 0; levels <= 6; ++levels) {
       Case c{std::to_string(w) + "x" + std::to_string(h) + " levels " + std::to_string(levels), generated(w, h, 3, 8),
              lossy()};
@@ -133,39 +133,29 @@ TEST(J2kLossyMatrix, ThinAndTinyImagesAtEveryLevelCount) {
 }
 
 TEST(J2kLossyMatrix, TilesWithImageAndTileOffsets) {
-  struct T { std::int64_t ox, oy, tw, th, tx, ty; int levels; };
-  const T tilings[] = {{0, 0, 32, 32, 0, 0, 3}, {3, 1, 16, 16, 2, 0, 3}, {5, 7, 17, 9, 4, 6, 3}, {1, 1, 1, 64, 1, 0, 3},
-                       {9, 2, 7, 5, 9, 1, 2}};
-  for (const T& t : tilings)
+  for (const test_support::Tiling& t : test_support::kTilings)
     for (bool targeted : {false, true}) {
       // Tiles of a few dozen samples spend a byte target on tile-part headers; those tilings are
       // checked without one.
       if (targeted && t.tw * t.th < 256) continue;
-      std::ostringstream name;
-      name << "origin " << t.ox << "," << t.oy << " tiles " << t.tw << "x" << t.th << " at " << t.tx << "," << t.ty
-           << (targeted ? " at 3 bpp" : "");
-      Case c{name.str(), generated(45, 38, 3, 8), lossy()};
+      Case c{t.name() + (targeted ? " at 3 bpp" : ""), generated(45, 38, 3, 8), lossy()};
       codec::EncodeParams& p = c.params;
-      p.image_x0 = t.ox, p.image_y0 = t.oy, p.tile_width = t.tw, p.tile_height = t.th, p.tile_x0 = t.tx, p.tile_y0 = t.ty;
-      p.levels = t.levels;
-      std::ostringstream opj;
-      opj << "-n " << p.levels + 1 << " -t " << t.tw << "," << t.th << " -d " << t.ox << "," << t.oy << " -T " << t.tx
-          << "," << t.ty;
+      t.apply(p);
+      std::string opj = t.opj_options();
       if (targeted) {
         // Small tiles spend much of the file on headers; 3 bpp over 45x38 still buys a decode far
         // above a broken one's (< 10 dB) on this noisy content.
         p.layers = {{codec::LayerTarget::Kind::Bytes, 45.0 * 38 * 3 * 3 / 8}};
         c.min_psnr = 16;
-        opj << " -r 8";
+        opj += " -r 8";
       }
-      c.opj_equivalent = opj.str();
+      c.opj_equivalent = opj;
       check(c);
     }
 }
 
 TEST(J2kLossyMatrix, CodeBlockSizes) {
-  const std::pair<int, int> sizes[] = {{4, 4}, {8, 8}, {16, 16}, {32, 32}, {64, 64}, {4, 64}, {64, 4}, {128, 32}, {16, 256}, {1024, 4}};
-  for (auto [w, h] : sizes)
+  for (auto [w, h] : test_support::kCodeBlockSizes)
     for (bool targeted : {false, true}) {
       Case c{"code-block " + std::to_string(w) + "x" + std::to_string(h) + (targeted ? " at 1 bpp" : ""),
              generated(90, 70, 1, 8), lossy()};
@@ -184,13 +174,7 @@ TEST(J2kLossyMatrix, ProgressionOrdersWithPrecinctsAndLayers) {
     for (bool precincts : {false, true}) {
       Case c{"order " + std::to_string(o) + (precincts ? " precincts" : ""), generated(70, 53, 3, 8), lossy()};
       codec::EncodeParams& p = c.params;
-      p.order = static_cast<codec::Progression>(o);
-      p.levels = 4;
-      p.image_x0 = 3;
-      p.image_y0 = 5;
-      if (precincts) p.precincts = {{32, 32}, {16, 16}, {8, 8}};
-      p.codeblock_width = 8;
-      p.codeblock_height = 8;
+      test_support::apply_order(p, o, precincts);
       for (int l = 1; l <= 3; ++l) p.layers.push_back({codec::LayerTarget::Kind::Bytes, 700.0 * l});
       c.min_psnr = 16;
       check(c);
