@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -167,3 +168,32 @@ TEST_F(J2kencCli, BadInputGetsOneLine) {
 }
 
 }  // namespace
+
+// OpenImageIO is a module loaded on first need (imageio/src/oiio_module.h). Netpbm and PFM inputs
+// must never need it; other formats without it fail with one line, a non-zero exit and no output.
+class WithoutOpenImageIoModule : public J2kencCli {
+ protected:
+  void SetUp() override {
+    J2kencCli::SetUp();
+    ppm = dir / "rgb.ppm";
+    imageio::write_image(ppm.string(), testimages::generate(testimages::Pattern::Mix, 40, 30, 3, 8));
+    ASSERT_EQ(setenv("GPUJ2K_OIIO_MODULE", (dir / "no-such-module.so").c_str(), 1), 0);
+  }
+  void TearDown() override {
+    unsetenv("GPUJ2K_OIIO_MODULE");
+    J2kencCli::TearDown();
+  }
+  fs::path ppm;
+};
+
+TEST_F(WithoutOpenImageIoModule, NetpbmInputNeverLoadsIt) {
+  const fs::path out = dir / "out.j2k";
+  const ProcessResult r = j2kenc("-q --lossless -i '" + ppm.string() + "' -o '" + out.string() + "'", dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out));
+}
+
+TEST_F(WithoutOpenImageIoModule, PngInputFailsWithOneLineNamingTheModule) {
+  expect_one_line_failure("-q --lossless -i '" + rgb.string() + "'", "needs OpenImageIO");
+  expect_one_line_failure("-q --lossless -i '" + rgb.string() + "'", rgb.string());
+}

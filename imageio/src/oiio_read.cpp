@@ -1,5 +1,5 @@
-// Reading through OpenImageIO, keeping each file's native sample type; PFM and
-// PNM go to our own readers.
+// Reading through OpenImageIO, keeping each file's native sample type. Built into the OpenImageIO
+// module (see oiio_module.h), not into the programs themselves.
 
 #include <OpenImageIO/imageio.h>
 
@@ -7,11 +7,9 @@
 #include <string_view>
 #include <vector>
 
-#include "file_extension.h"
 #include "image_checks.h"
-#include "imageio/pfm.h"
 #include "imageio/pnm.h"
-#include "imageio/read.h"
+#include "oiio_codec.h"
 #include "oiio_messages.h"
 
 namespace imageio {
@@ -76,6 +74,10 @@ void read_integers(OIIO::ImageInput& in, const std::string& path, OIIO::TypeDesc
   for (std::size_t i = 0; i < buffer.size(); ++i) image.pixels[i] = float(buffer[i]);
 }
 
+}  // namespace
+
+namespace detail {
+
 Image read_with_oiio(const std::string& path) {
   // Without this hint OIIO premultiplies colour by alpha while reading
   // files that store unassociated alpha (PNG, TIFF), which changes values.
@@ -127,20 +129,5 @@ Image read_with_oiio(const std::string& path) {
   return image;
 }
 
-}  // namespace
-
-Image read_image(const std::string& path) {
-  if (detail::has_pfm_extension(path)) return read_pfm(path);
-  if (detail::has_pnm_extension(path)) return read_pnm(path);
-  return read_with_oiio(path);
-}
-
-Image read_greyscale(const std::string& path) {
-  Image image = read_image(path);
-  if (image.channels != 1) {
-    throw IoError(path, "expected a greyscale image, found " + std::to_string(image.channels) + " channels");
-  }
-  return image;
-}
-
+}  // namespace detail
 }  // namespace imageio

@@ -1,5 +1,5 @@
-// Writing through OpenImageIO without changing any sample value; PFM and PNM
-// are handed to our own writers.
+// Writing through OpenImageIO without changing any sample value. Built into the OpenImageIO
+// module (see oiio_module.h), not into the programs themselves.
 
 #include <OpenImageIO/imageio.h>
 
@@ -7,11 +7,8 @@
 #include <vector>
 
 #include "atomic_file.h"
-#include "file_extension.h"
 #include "image_checks.h"
-#include "imageio/pfm.h"
-#include "imageio/pnm.h"
-#include "imageio/write.h"
+#include "oiio_codec.h"
 #include "oiio_messages.h"
 
 namespace imageio {
@@ -48,6 +45,10 @@ void write_pixels(OIIO::ImageOutput& out, const std::string& path, const Image& 
   }
   if (!ok) throw IoError(path, detail::oiio_message(out.geterror(), "cannot write pixel data"));
 }
+
+}  // namespace
+
+namespace detail {
 
 void write_with_oiio(const std::string& path, const Image& image) {
   const OIIO::TypeDesc type = storage_type(image);
@@ -88,20 +89,5 @@ void write_with_oiio(const std::string& path, const Image& image) {
   });
 }
 
-}  // namespace
-
-void write_image(const std::string& path, const Image& image) {
-  detail::check_layout(path, image);
-  if (!image.is_float) detail::check_integer_samples(path, image);
-  if (detail::has_pfm_extension(path)) {
-    write_pfm(path, image);
-    return;
-  }
-  if (detail::has_pnm_extension(path)) {
-    write_pnm(path, image);
-    return;
-  }
-  write_with_oiio(path, image);
-}
-
+}  // namespace detail
 }  // namespace imageio
