@@ -15,6 +15,7 @@ PACKAGES=(
   libespeak-ng-dev espeak-ng-data  # the performer's text to speech (GPL-3.0: linked by the performer only)
   libtinygltf-dev               # glTF 2.0 avatars (morph targets, skins) for the performer
   libgtest-dev                  # tests
+  clang libclang-rt-14-dev      # libFuzzer for the reader fuzzers (scripts/fuzz.sh)
   libopenjp2-tools grokj2k-tools  # reference decoders the codec's output is checked against
   python3 python3-matplotlib    # bench/table41, bench/psnr and Figure 4.13
 )

@@ -3,6 +3,7 @@
 # Release build and under AddressSanitizer + UndefinedBehaviorSanitizer. GPU tests run on whatever
 # the GL layer finds (Mesa llvmpipe on machines without a GPU): they are never skipped for that.
 # Test programs run side by side (ctest -j): many wait on outside decoders, and no test times itself.
+# Last, every file reader is fuzzed for FUZZ_SECONDS (default 30) each (scripts/fuzz.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -15,3 +16,5 @@ export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
 (cd build-asan && ctest --output-on-failure --timeout 1800 -j "$(nproc)")
+
+bash scripts/fuzz.sh

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Fuzzes the file readers for a while each: PFM and PNM (imageio), BVH and Rhubarb Lip Sync
+# (performer). Builds the libFuzzer targets with Clang in build-fuzz/ (ASan + UBSan), seeds each
+# with a small valid file written here, and runs it for FUZZ_SECONDS (default 30). A crash, a
+# sanitizer report or a broken promise of a reader stops the script with libFuzzer's report and
+# the input that caused it (build-fuzz/crash-*).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds="${FUZZ_SECONDS:-30}"
+dir=build-fuzz
+CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGPUJ2K_FUZZ=ON >/dev/null
+cmake --build "$dir" --parallel "$(nproc)" --target pfm_fuzz pnm_fuzz bvh_fuzz rhubarb_fuzz
+
+corpus="$dir/corpus"
+rm -rf "$corpus"
+mkdir -p "$corpus"/{pfm,pnm,bvh,rhubarb}
+printf 'Pf\n2 1\n-1.0\n\x00\x00\x80\x3f\x00\x00\x00\x40' > "$corpus/pfm/grey.pfm"
+printf 'PF\n1 1\n1.0\n\x3f\x80\x00\x00\x40\x00\x00\x00\x40\x40\x00\x00' > "$corpus/pfm/rgb_big_endian.pfm"
+printf 'P2\n2 2\n# comment\n65535\n0 1 65534 65535\n' > "$corpus/pnm/plain16.pgm"
+printf 'P6\n1 1\n255\n\x01\x02\x03' > "$corpus/pnm/raw.ppm"
+printf 'P1\n3 1\n1 0 1\n' > "$corpus/pnm/plain.pbm"
+cat > "$corpus/bvh/two_joints.bvh" <<'BVH'
+HIERARCHY
+ROOT Hips
+{
+  OFFSET 0 0 0
+  CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation
+  JOINT Chest
+  {
+    OFFSET 0 5 0
+    CHANNELS 3 Zrotation Xrotation Yrotation
+    End Site
+    {
+      OFFSET 0 5 0
+    }
+  }
+}
+MOTION
+Frames: 2
+Frame Time: 0.0333333
+0 0 0 0 0 0 0 0 0
+1 2 3 10 20 30 5 5 5
+BVH
+# The Rhubarb fuzzer reads the first byte as the format switch: even TSV, odd JSON.
+printf '\x000.00\tX\n0.05\tB\n0.20\tA\n' > "$corpus/rhubarb/cues.tsv"
+printf '\x01{"metadata":{"duration":0.3},"mouthCues":[{"start":0.00,"end":0.05,"value":"X"},{"start":0.05,"end":0.30,"value":"B"}]}' \
+  > "$corpus/rhubarb/cues.json"
+
+for reader in pfm pnm bvh rhubarb; do
+  echo "fuzzing the $reader reader for ${seconds} s"
+  # -artifact_prefix keeps any crash input next to the build, where the report points.
+  (cd "$dir" && "bin/${reader}_fuzz" "corpus/$reader" -max_total_time="$seconds" -max_len=8192 \
+    -artifact_prefix="crash-$reader-" -print_final_stats=1 2>&1 | grep -E "^(stat::number_of_executed_units|==|SUMMARY|ERROR|Done)" || true)
+  # libFuzzer's exit status is lost in the pipe above; a crash leaves its input behind instead.
+  if ls "$dir"/crash-"$reader"-* >/dev/null 2>&1; then
+    echo "the $reader fuzzer found a failing input: $(ls "$dir"/crash-"$reader"-*)" >&2
+    exit 1
+  fi
+done
