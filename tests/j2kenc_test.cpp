@@ -194,6 +194,9 @@ TEST_F(WithoutOpenImageIoModule, NetpbmInputNeverLoadsIt) {
 }
 
 TEST_F(WithoutOpenImageIoModule, PngInputFailsWithOneLineNamingTheModule) {
+#ifdef GPUJ2K_OIIO_LINKED
+  GTEST_SKIP() << "this build links OpenImageIO into the programs (sanitizer build), so there is no module to miss";
+#endif
   expect_one_line_failure("-q --lossless -i '" + rgb.string() + "'", "needs OpenImageIO");
   expect_one_line_failure("-q --lossless -i '" + rgb.string() + "'", rgb.string());
 }
