@@ -6,7 +6,6 @@
 #include <unistd.h>
 
 #include <cstdlib>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -72,9 +71,7 @@ Module load() {
 }
 
 const Module& module_for(const std::string& path) {
-  static std::once_flag once;
-  static Module module;
-  std::call_once(once, [] { module = load(); });
+  static const Module module = load();  // once per process, thread-safe (a function-local static)
   if (!module.failure.empty()) throw IoError(path, module.failure);
   return module;
 }
