@@ -782,3 +782,66 @@ TEST(T1, TruncationLengthsAreMinimal) {
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Bit-for-bit stability of the block coder. The digest below was recorded from the tier-1 coder
+// as it stood before its speed rewrite (commit ec866bd) over every block of this test: every size
+// of all_sizes() and a few more, every orientation, every distribution, every style of styles(),
+// with and without fractions, orientations in rotation. Any change to a codeword byte, a pass's truncation length, its
+// distortion figure (to the last bit of the double), the energy or the missing MSBs changes it.
+// A faster coder must produce exactly the same; the round-trip tests above say the old one was
+// right.
+
+namespace {
+
+struct Digest {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a, 64 bits
+  void bytes(const void* p, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) {
+      h ^= static_cast<const std::uint8_t*>(p)[i];
+      h *= 1099511628211ull;
+    }
+  }
+  template <class T>
+  void value(T v) {
+    bytes(&v, sizeof v);
+  }
+};
+
+void digest_block(Digest& dg, const EncodedBlock& e) {
+  dg.value(e.data.size());
+  dg.bytes(e.data.data(), e.data.size());
+  dg.value(e.energy);
+  dg.value(e.missing_msbs);
+  dg.value(e.passes.size());
+  for (const auto& p : e.passes) {
+    dg.value(p.length);
+    dg.value(p.distortion_decrease);
+    dg.value(static_cast<int>(p.terminated));
+  }
+}
+
+}  // namespace
+
+TEST(T1Golden, EveryCodewordLengthAndDistortionAsRecorded) {
+  std::mt19937 rng(9001);
+  Digest dg;
+  std::size_t blocks = 0;
+  std::vector<Size> sizes = all_sizes();
+  for (Size extra : {Size{64, 64}, Size{64, 64}, Size{32, 32}, Size{128, 16}, Size{16, 256}}) sizes.push_back(extra);
+  for (BlockStyle st : styles())
+    for (Size s : sizes)
+      for (Dist d : {Dist::Zero, Dist::Single, Dist::Sparse, Dist::Dense, Dist::Laplacian, Dist::Large, Dist::Huge})
+        for (bool with_fractions : {false, true}) {
+            const Orientation o = kOrientations[blocks % 4];  // rotating: every one meets every case
+            const Block b = make_block(d, s.w, s.h, rng);
+            std::vector<std::uint8_t> fractions;
+            if (with_fractions)
+              for (std::size_t i = 0; i < b.c.size(); ++i)
+                fractions.push_back(static_cast<std::uint8_t>(std::uniform_int_distribution<int>(0, 255)(rng)));
+            digest_block(dg, codec::t1::encode_block(b.c, s.w, s.h, o, b.mb, st, fractions));
+            ++blocks;
+          }
+  EXPECT_EQ(blocks, 8190u);
+  EXPECT_EQ(dg.h, 0x782c1de8dce204c0ull) << std::hex << "digest 0x" << dg.h;
+}
