@@ -167,6 +167,8 @@ void print_timing(const std::string& mode, const codec::EncodeReport& r, double 
   if (mode == "json") {
     std::string json = "{\"dwt\": \"";
     for (char ch : r.dwt_backend) json += (ch == '"' || ch == '\\') ? std::string("\\") + ch : std::string(1, ch);
+    json += "\", \"dwt_reason\": \"";
+    for (char ch : r.dwt_reason) json += (ch == '"' || ch == '\\') ? std::string("\\") + ch : std::string(1, ch);
     json += "\", \"threads\": " + std::to_string(r.threads) + ", \"stages_ms\": {";
     for (std::size_t i = 0; i < std::size(stages); ++i)
       json += (i ? ", \"" : "\"") + std::string(stages[i].first) + "\": " + std::to_string(stages[i].second);
@@ -174,7 +176,8 @@ void print_timing(const std::string& mode, const codec::EncodeReport& r, double 
     std::fprintf(stderr, "%s\n", json.c_str());
     return;
   }
-  std::fprintf(stderr, "j2kenc: timing in ms, DWT on %s, %d threads\n", r.dwt_backend.c_str(), r.threads);
+  std::fprintf(stderr, "j2kenc: timing in ms, DWT on %s (%s), %d threads\n", r.dwt_backend.c_str(), r.dwt_reason.c_str(),
+               r.threads);
   for (const auto& [name, ms] : stages) std::fprintf(stderr, "  %-22s %10.2f\n", name, ms);
   std::fprintf(stderr, "  %-22s %10.2f\n  %-22s %10.2f\n", "sum of stages", sum, "total (measured)", measured_ms);
 }
@@ -319,10 +322,10 @@ int main(int argc, char** argv) {
     const double ms = since(t0);
     if (!timing.empty()) print_timing(timing, report, read_ms, output_ms, ms);
     if (!quiet)
-      std::fprintf(stderr, "j2kenc: %s -> %s: %dx%d, %zu components, %zu bytes (%.4f bpp), %.1f ms, DWT on %s\n",
+      std::fprintf(stderr, "j2kenc: %s -> %s: %dx%d, %zu components, %zu bytes (%.4f bpp), %.1f ms, DWT on %s (%s)\n",
                    input.c_str(), output.c_str(), image.width, image.height, image.components.size(), bytes.size(),
                    8.0 * static_cast<double>(bytes.size()) / (static_cast<double>(image.width) * image.height), ms,
-                   report.dwt_backend.c_str());
+                   report.dwt_backend.c_str(), report.dwt_reason.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "j2kenc: %s\n", cli::one_line(e.what()).c_str());
     return 1;

@@ -9,10 +9,12 @@
 
 namespace dwt_cpu {
 
-CpuBackend::CpuBackend(int threads) : pool_(threads) {}
+CpuBackend::CpuBackend(int threads) : owned_pool_(std::make_unique<ThreadPool>(threads)), pool_(owned_pool_.get()) {}
+
+CpuBackend::CpuBackend(ThreadPool& pool) : pool_(&pool) {}
 
 std::string CpuBackend::name() const {
-  return std::string("cpu lifting (") + simd::target_name() + ", " + std::to_string(pool_.size()) + " threads)";
+  return std::string("cpu lifting (") + simd::target_name() + ", " + std::to_string(pool_->size()) + " threads)";
 }
 
 bool CpuBackend::supports(dwt::KernelId) const { return true; }
@@ -28,9 +30,9 @@ void CpuBackend::transform(dwt::PlaneSpan<T> plane, const dwt::DwtParams& params
   auto pass = [&](const dwt::LevelGeometry& g, Axis axis) {
     const AxisPass p{kernel, params.boundary, axis, axis == Axis::Horizontal ? g.x : g.y, g.x.length, g.y.length};
     if (inverse)
-      run_inverse<T>(p, plane, pool_);
+      run_inverse<T>(p, plane, *pool_);
     else
-      run_forward<T>(p, plane, pool_);
+      run_forward<T>(p, plane, *pool_);
   };
   if (!inverse) {
     for (const auto& g : levels) {

@@ -45,11 +45,21 @@ void GpuBackend::ensure_ready() {
     state_->context->make_current();
     return;
   }
-  auto state = std::make_unique<State>();
-  auto t0 = Clock::now();
-  state->context = glc::Context::create(platform_ == glc::Platform::Auto ? glc::platform_from_env() : platform_);
+  const auto t0 = Clock::now();
+  auto context = glc::Context::create(platform_ == glc::Platform::Auto ? glc::platform_from_env() : platform_);
   timings_.context_ms = ms_since(t0);
-  t0 = Clock::now();
+  prepare(std::move(context));
+}
+
+GpuBackend::GpuBackend(std::unique_ptr<glc::Context> context) : platform_(context->platform()) {
+  context->make_current();
+  prepare(std::move(context));
+}
+
+void GpuBackend::prepare(std::unique_ptr<glc::Context> context) {
+  auto state = std::make_unique<State>();
+  state->context = std::move(context);
+  const auto t0 = Clock::now();
   const glc::GlApi& gl = state->context->gl();
   state->shader = DwtShader::build(gl);
   state->quad = glc::VertexArray::create(gl);

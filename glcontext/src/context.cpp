@@ -4,7 +4,9 @@
 #include "backend.h"
 #include "glcontext/error.h"
 
+#include <cctype>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -52,6 +54,28 @@ std::unique_ptr<Context> Context::create(Platform platform) {
     }
   }
   throw GlError("no OpenGL 3.3 core context: " + failures);
+}
+
+std::unique_ptr<Context> Context::create_hardware() {
+  std::unique_ptr<Context> context;
+  try {
+    context.reset(new Context(Platform::EglDevice, detail::create_egl_device_backend(false)));
+  } catch (const GlError& e) {
+    throw GlError(std::string("no hardware GPU: egl-device: ") + e.what());
+  }
+  // A device not flagged as software can still be one (a vendor ICD without the Mesa flag).
+  if (is_software_renderer(context->renderer()))
+    throw GlError("no hardware GPU: the only renderer is " + context->renderer() + ", a software rasteriser");
+  return context;
+}
+
+bool is_software_renderer(std::string_view renderer) {
+  std::string low(renderer);
+  for (char& c : low) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (std::string_view name : {"llvmpipe", "softpipe", "swrast", "lavapipe", "swiftshader", "software rasterizer",
+                                "basic render driver"})
+    if (low.find(name) != std::string::npos) return true;
+  return false;
 }
 
 Context::Context(Platform platform, std::unique_ptr<detail::Backend> backend)

@@ -13,7 +13,7 @@
 #include "codec/rate/pcrd.h"
 #include "codec/rate/rate_allocator.h"
 #include "dwt_cpu/cpu_backend.h"
-#include "dwt_gpu/gpu_backend.h"
+#include "codec/encoder/dwt_choice.h"
 
 #include <chrono>
 #include <cmath>
@@ -131,32 +131,6 @@ std::vector<std::uint8_t> tile_body(const CodedTile& coded, const EncodeParams& 
   return body;
 }
 
-struct DwtChoice {
-  std::unique_ptr<dwt::DwtBackend> backend;
-  std::string name;
-};
-
-DwtChoice choose_dwt(const EncodeParams& params, EncodeReport& report) {
-  if (params.lossless || params.dwt == DwtDevice::Cpu) {
-    auto cpu = std::make_unique<dwt_cpu::CpuBackend>(params.threads);
-    std::string name = cpu->name();
-    return {std::move(cpu), name};
-  }
-  try {
-    auto gpu = std::make_unique<dwt_gpu::GpuBackend>(glc::Platform::Auto, true);
-    std::string name = "gpu fragment shaders (" + gpu->renderer() + ")";
-    report.times.gl_context = gpu->last_timings().context_ms;
-    report.times.shader_compile = gpu->last_timings().compile_ms;
-    return {std::move(gpu), name};
-  } catch (const std::exception& e) {
-    if (params.dwt == DwtDevice::Gpu) throw EncodeError(std::string("--dwt gpu: ") + e.what());
-    auto cpu = std::make_unique<dwt_cpu::CpuBackend>(params.threads);
-    report.notices.push_back("no GPU context (" + std::string(e.what()) + "); the 9/7 DWT runs on the CPU");
-    std::string name = cpu->name();
-    return {std::move(cpu), name};
-  }
-}
-
 }  // namespace
 
 std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& params, FileFormat format,
@@ -166,11 +140,17 @@ std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& p
   EncodeReport report;
   const auto setup_start = Clock::now();
   const CodingPlan plan = make_plan(image, params);
-  DwtChoice dwt = choose_dwt(params, report);
-  report.dwt_backend = dwt.name;
-  dwt_cpu::CpuBackend reversible_dwt(params.threads);
+  // One set of worker threads for every stage: the DWT, the component transform, tier-1.
   dwt_cpu::ThreadPool pool(params.threads);
   report.threads = pool.size();
+  double samples = 0;
+  for (const SourceComponent& c : image.components) samples += static_cast<double>(c.samples.size());
+  DwtChoice dwt = choose_dwt(params, samples, pool);
+  report.dwt_backend = dwt.name;
+  report.dwt_reason = dwt.reason;
+  report.times.gl_context = dwt.gl_context_ms;
+  report.times.shader_compile = dwt.shader_compile_ms;
+  dwt_cpu::CpuBackend reversible_dwt(pool);
 
   std::vector<CodedTile> tiles;
   const int count = plan.grid.tile_count();
@@ -236,7 +216,7 @@ std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& p
       // true error and rescale the estimate's target until the measured PSNR lands in
       // [target, target + 0.25 dB]. The estimate runs about 10 % optimistic (the 9/7 is not
       // orthogonal), so a couple of rounds suffice.
-      dwt_cpu::CpuBackend inverse_dwt(params.threads);
+      dwt_cpu::CpuBackend inverse_dwt(pool);
       std::vector<std::vector<int>> per_layer(static_cast<std::size_t>(layers), std::vector<int>(hulls.size(), 0));
       for (int l = 0; l < layers; ++l) {
         const double goal = static_cast<double>(samples) * peak * peak * std::pow(10.0, -params.layers[static_cast<std::size_t>(l)].value / 10.0);

@@ -12,10 +12,13 @@ namespace dwt_cpu {
 class CpuBackend final : public dwt::DwtBackend {
  public:
   explicit CpuBackend(int threads = 0);  // 0: one per hardware thread
+  // Runs on the caller's pool (which must outlive the backend), so that one program keeps one set
+  // of worker threads for every stage.
+  explicit CpuBackend(ThreadPool& pool);
 
   std::string name() const override;
   bool supports(dwt::KernelId kernel) const override;
-  int threads() const { return pool_.size(); }
+  int threads() const { return pool_->size(); }
 
   void forward(dwt::PlaneSpan<float> plane, const dwt::DwtParams& params) override;
   void inverse(dwt::PlaneSpan<float> plane, const dwt::DwtParams& params) override;
@@ -26,7 +29,8 @@ class CpuBackend final : public dwt::DwtBackend {
   template <class T>
   void transform(dwt::PlaneSpan<T> plane, const dwt::DwtParams& params, bool inverse);
 
-  ThreadPool pool_;
+  std::unique_ptr<ThreadPool> owned_pool_;
+  ThreadPool* pool_;
 };
 
 }  // namespace dwt_cpu

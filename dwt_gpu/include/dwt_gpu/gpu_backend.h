@@ -28,6 +28,9 @@ class GpuBackend final : public dwt::DwtBackend {
  public:
   // Creates the context lazily on first use unless `eager` is set; platform from GPUJ2K_GL when Auto.
   explicit GpuBackend(glc::Platform platform = glc::Platform::Auto, bool eager = false);
+  // Adopts a context the caller made (for example with glc::Context::create_hardware()) and
+  // compiles the shader at once; its creation time is the caller's to report.
+  explicit GpuBackend(std::unique_ptr<glc::Context> context);
   ~GpuBackend() override;
 
   std::string name() const override;  // "gpu fragment shaders (<renderer>)"
@@ -45,6 +48,7 @@ class GpuBackend final : public dwt::DwtBackend {
  private:
   struct State;
   void ensure_ready();
+  void prepare(std::unique_ptr<glc::Context> context);
   void transform(dwt::PlaneSpan<float> plane, const dwt::DwtParams& params, bool inverse);
 
   glc::Platform platform_;

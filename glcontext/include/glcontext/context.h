@@ -33,6 +33,11 @@ std::string_view platform_name(Platform platform);
 // back to another renderer).
 Platform platform_from_env();
 
+// Whether a GL_RENDERER string names a software rasteriser (Mesa's llvmpipe, softpipe and swrast,
+// lavapipe, SwiftShader, Microsoft's Basic Render Driver): a renderer that runs on the CPU, useful
+// to prove a GPU path correct, never to make it fast.
+bool is_software_renderer(std::string_view renderer);
+
 namespace detail {
 class Backend;
 }
@@ -51,6 +56,12 @@ class Context {
   // (releasing whichever Context was current here before). Throws GlError
   // naming every platform tried and why each failed.
   static std::unique_ptr<Context> create(Platform platform = Platform::Auto);
+
+  // A context on a hardware GPU, never a software rasteriser: the EGL device platform's
+  // non-software devices only (NVIDIA's headless path, and Mesa's DRM devices). Cheap to refuse on
+  // a machine without one: enumerating the devices creates no context. Throws GlError saying
+  // what was found instead.
+  static std::unique_ptr<Context> create_hardware();
 
   ~Context();
   Context(const Context&) = delete;

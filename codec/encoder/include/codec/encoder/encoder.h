@@ -34,6 +34,7 @@ struct EncodeReport {
   StageTimes times;
   int threads = 0;
   std::string dwt_backend;             // the backend that ran the DWT, with its renderer for the GPU
+  std::string dwt_reason;              // why that backend (--dwt auto's decision, or what was asked)
   std::vector<std::string> notices;    // one line each, e.g. the GPU fallback
   std::vector<double> layer_estimates; // per layer: estimated PSNR (dB) from the rate-distortion data
 };
