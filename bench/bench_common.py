@@ -1,4 +1,4 @@
-"""Shared helpers of bench/table41 and bench/psnr: finding the tools, running the four encoders,
+"""Shared helpers of bench/table41, bench/psnr and bench/speed: finding the tools, running the encoders,
 timing them, describing the machine, and printing Markdown tables.
 
 Standard library only (matplotlib is imported by table41 for --plot, and only then)."""
@@ -10,6 +10,7 @@ import shutil
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 
 PROJECT_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -91,6 +92,49 @@ def find_kodak_dir(given=None):
     return None
 
 
+def package_version(path):
+    """'0.9.0-3+b1' for a tool installed by a Debian package (dpkg -S, dpkg-query), else 'version unknown':
+    for tools such as ojph_compress that print no version of their own."""
+    try:
+        owner = subprocess.run(["dpkg", "-S", os.path.realpath(path)], capture_output=True, text=True, timeout=30)
+        if owner.returncode != 0 or ":" not in owner.stdout:
+            return "version unknown"
+        package = owner.stdout.split(":", 1)[0].split(",")[0].strip()
+        version = subprocess.run(["dpkg-query", "-W", "-f", "${Version}", package], capture_output=True, text=True,
+                                 timeout=30)
+        return version.stdout.strip() if version.returncode == 0 and version.stdout.strip() else "version unknown"
+    except (OSError, subprocess.SubprocessError):
+        return "version unknown"
+
+
+def parse_keys(text, known, option):
+    """The keys of `known` (a dict, in its order) named in the comma-separated `text`."""
+    keys = [x.strip() for x in text.split(",") if x.strip()]
+    bad = [k for k in keys if k not in known]
+    if bad or not keys:
+        raise BenchError(f"{option} takes a list of {', '.join(known)}, got \"{text}\"")
+    return [k for k in known if k in keys]
+
+
+def make_square_image(tools, size, kodak, folder):
+    """Writes the size x size 8-bit RGB test image as PPM (every encoder reads it alike; opj_compress would
+    apply a PNG's gAMA chunk): a mosaic of the Kodak photographs (tools["bench_image"]) when `kodak` is a
+    folder, else a synthetic `gentestimage --pattern mix` image (tools["gentestimage"]).
+    Returns (path, description)."""
+    path = os.path.join(folder, f"image_{size}.ppm")
+    if kodak:
+        cmd = [tools["bench_image"], "mosaic", "--size", str(size), "--kodak", kodak, "-o", path]
+    else:
+        cmd = [tools["gentestimage"], "--pattern", "mix", "--size", f"{size}x{size}", "--channels", "3",
+               "--bits", "8", "-o", path]
+    out = subprocess.run(cmd, capture_output=True, text=True)
+    if out.returncode != 0:
+        raise BenchError(out.stderr.strip() or f"{os.path.basename(cmd[0])} failed")
+    if kodak:
+        return path, out.stdout.strip()
+    return path, "SYNTHETIC gentestimage --pattern mix (RGB, 8 bits)"
+
+
 # ---------------------------------------------------------------- machine
 
 def cpu_model():
@@ -152,6 +196,47 @@ def _run(cmd, what):
         tail = text[-1] if text else "(no output)"
         raise BenchError(f"{what} failed (exit {proc.returncode}): {tail}")
     return proc, wall
+
+
+def run_measured(cmd, what):
+    """Runs `cmd` as one child process and returns a dict: wall_s (from just before the start to the
+    reaping of the process), max_rss_kb (the child's peak resident set, from os.wait4: ru_maxrss, in
+    KiB on Linux), rss_floor_kb, stdout and stderr (text). Output goes to temporary files, not pipes, so
+    that no reading happens while the clock runs. A non-zero exit raises BenchError naming `what`.
+
+    Linux keeps ru_maxrss across execve, and the child starts as a (v)fork of this Python process, so
+    max_rss_kb is never below this process's own peak at the start, rss_floor_kb: a child that used less
+    reads as the floor, and only a max_rss_kb above the floor is the encoder's own peak."""
+    import resource
+    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
+        floor = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+        start = time.perf_counter()
+        proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=out, stderr=err)
+        _, status, usage = os.wait4(proc.pid, 0)
+        wall = time.perf_counter() - start
+        proc.returncode = os.waitstatus_to_exitcode(status)
+        out.seek(0)
+        err.seek(0)
+        stdout = out.read().decode(errors="replace")
+        stderr = err.read().decode(errors="replace")
+    if proc.returncode != 0:
+        text = (stderr.strip() or stdout.strip()).splitlines()
+        tail = text[-1] if text else "(no output)"
+        raise BenchError(f"{what} failed (exit {proc.returncode}): {tail}")
+    return {"wall_s": wall, "max_rss_kb": usage.ru_maxrss, "rss_floor_kb": floor, "stdout": stdout,
+            "stderr": stderr}
+
+
+def timing_report(stderr):
+    """The last JSON line j2kenc --timing=json printed on stderr, or None."""
+    report = None
+    for line in stderr.splitlines():
+        if line.startswith("{"):
+            try:
+                report = json.loads(line)
+            except ValueError:
+                pass
+    return report
 
 
 def encode(tools, key, image, output, bpp, ratio, threads):

@@ -1,8 +1,9 @@
 #!/usr/bin/python3
-"""Smoke test of bench/table41 and bench/psnr, so that the scripts cannot rot: table41 on 128x128
-(one run, all four encoders, CSV and figure) and psnr on one small synthetic image (the edges
+"""Smoke test of bench/table41, bench/psnr and bench/speed, so that the scripts cannot rot: table41 on
+128x128 (one run, all four encoders, CSV and figure), psnr on one small synthetic image (the edges
 pattern, with a PNG gAMA chunk like the Kodak photographs carry) at the three
-rates of Table 4.2. It checks the shape of the Markdown tables (header columns, one row per
+rates of Table 4.2, and speed on 128x128 (one run, all five encoders, 0.75 bpp and lossless, JSON).
+It checks the shape of the Markdown tables (header columns, one row per
 size/encoder or image/rate/encoder, numbers that parse), not speed.
 
   bench_smoke_test.py --bin BUILD/bin
@@ -11,6 +12,7 @@ Exit status 0 when every check passes; otherwise the failures are listed on stde
 
 import argparse
 import csv
+import json
 import math
 import os
 import re
@@ -198,11 +200,62 @@ def test_psnr(bin_dir, tmp):
           "psnr: no CPU/GPU difference line")
 
 
+def test_speed(bin_dir, tmp):
+    json_path = os.path.join(tmp, "speed.json")
+    rc, out, err = run([sys.executable, os.path.join(ROOT, "bench", "speed"), "--sizes", "128", "--runs", "1",
+                        "--rates", "0.75,lossless", "--bin", bin_dir, "--json", json_path,
+                        "--out", os.path.join(tmp, "speed")])
+    if not check(rc == 0, f"speed exited {rc}: {err.strip()[-2000:]}"):
+        return
+    check(re.search(r"^CPU: .+, \d+ hardware threads", out, re.M) is not None, "speed: no CPU line")
+    check(re.search(r"^j2kenc default DWT backend \(lossy\): \S", out, re.M) is not None,
+          "speed: no line naming the default DWT backend")
+    check(re.search(r"^GL renderer", out, re.M) is not None, "speed: no GL renderer line")
+    check(re.search(r"^Tools: .*grk_compress", out, re.M) is not None, "speed: no tool versions line")
+    heading = next((line for line in out.splitlines() if line.startswith("## 128x128: ")), None)
+    if not check(heading is not None, "speed: no '## 128x128: ...' table heading"):
+        return
+    header, rows = table_after(out, heading)
+    check(header == ["encoder", "rate", "wall s (median)", "x Grok", "bytes", "PSNR RGB dB", "peak RSS MB"],
+          f"speed header: {header}")
+    check(len(rows) == 10, f"speed: {len(rows)} rows, expected 10 (2 rates x 5 encoders)")
+    prefixes = ["j2kenc (default", "j2kenc --dwt cpu", "opj_compress", "grk_compress", "ojph_compress"]
+    for i, row in enumerate(rows):
+        if not check(header and len(row) == len(header), f"speed row has {len(row)} cells: {row}"):
+            continue
+        rate = "0.75 bpp" if i < 5 else "lossless"
+        check(row[0].startswith(prefixes[i % 5]), f"speed encoder {row[0]}, expected {prefixes[i % 5]}")
+        check(row[1] == rate, f"speed rate {row[1]}, expected {rate}")
+        number(row[2], f"speed {row[0]} wall s")
+        x = number(row[3], f"speed {row[0]} x Grok")
+        if row[0].startswith("grk_compress"):
+            check(x == 1.0, f"speed: Grok's own x Grok is {row[3]}")
+        b = number(row[4], f"speed {row[0]} bytes")
+        if rate == "lossless":
+            check(row[5] == "inf (bit-exact)", f"speed {row[0]} lossless PSNR: {row[5]}")
+        else:
+            target = 128 * 128 * 0.75 / 8
+            check(b is not None and 0.5 * target < b <= 1.1 * target, f"speed {row[0]}: {b} bytes, target {target:.0f}")
+            db = number(row[5], f"speed {row[0]} PSNR")
+            check(db is not None and db > 10, f"speed {row[0]}: {db} dB at 0.75 bpp")
+        number(row[6].removeprefix("<= "), f"speed {row[0]} peak RSS")
+    check(re.search(r"-qstep per rate .*0\.75 bpp: \d", out) is not None, "speed: no ojph_compress -qstep line")
+    check("Not checked: the targets are for the 2048x2048 image" in out, "speed: no targets note")
+    if check(os.path.isfile(json_path), "speed wrote no JSON"):
+        with open(json_path, encoding="utf-8") as f:
+            data = json.load(f)
+        check([r["encoder"] for r in data["results"]] == ["j2kenc", "j2kenc-cpu", "opj", "grk", "ojph"] * 2,
+              f"speed JSON encoders: {[r['encoder'] for r in data['results']]}")
+        check(all(len(r["runs_wall_s"]) == 1 for r in data["results"]), "speed JSON: runs_wall_s should hold 1 run")
+
+
 def test_errors(bin_dir):
     rc, out, err = run([sys.executable, os.path.join(ROOT, "bench", "psnr"), "/nonexistent/x.png", "--bin", bin_dir])
     check(rc == 1 and err.count("\n") == 1 and err.startswith("psnr: "), f"psnr on a missing file: rc {rc}, {err!r}")
     rc, out, err = run([sys.executable, os.path.join(ROOT, "bench", "table41"), "--sizes", "0", "--bin", bin_dir])
     check(rc == 1 and err.count("\n") == 1 and err.startswith("table41: "), f"table41 --sizes 0: rc {rc}, {err!r}")
+    rc, out, err = run([sys.executable, os.path.join(ROOT, "bench", "speed"), "--rates", "0.75,x", "--bin", bin_dir])
+    check(rc == 1 and err.count("\n") == 1 and err.startswith("speed: "), f"speed --rates 0.75,x: rc {rc}, {err!r}")
 
 
 def main():
@@ -213,6 +266,7 @@ def main():
     try:
         test_table41(args.bin, tmp)
         test_psnr(args.bin, tmp)
+        test_speed(args.bin, tmp)
         test_errors(args.bin)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
