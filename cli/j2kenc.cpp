@@ -172,7 +172,7 @@ void print_timing(const std::string& mode, const codec::EncodeReport& r, double 
     json += "\", \"threads\": " + std::to_string(r.threads) + ", \"stages_ms\": {";
     for (std::size_t i = 0; i < std::size(stages); ++i)
       json += (i ? ", \"" : "\"") + std::string(stages[i].first) + "\": " + std::to_string(stages[i].second);
-    json += "}, \"sum_ms\": " + std::to_string(sum) + ", \"total_ms\": " + std::to_string(measured_ms) + "}";
+    json += "}, \"recoded_blocks\": " + std::to_string(r.recoded_blocks) + ", \"sum_ms\": " + std::to_string(sum) + ", \"total_ms\": " + std::to_string(measured_ms) + "}";
     std::fprintf(stderr, "%s\n", json.c_str());
     return;
   }
@@ -180,6 +180,8 @@ void print_timing(const std::string& mode, const codec::EncodeReport& r, double 
                r.threads);
   for (const auto& [name, ms] : stages) std::fprintf(stderr, "  %-22s %10.2f\n", name, ms);
   std::fprintf(stderr, "  %-22s %10.2f\n  %-22s %10.2f\n", "sum of stages", sum, "total (measured)", measured_ms);
+  if (r.recoded_blocks > 0)
+    std::fprintf(stderr, "  (pass skipping: %zu blocks stopped too soon were coded again in full)\n", r.recoded_blocks);
 }
 
 }  // namespace
@@ -221,6 +223,9 @@ int main(int argc, char** argv) {
   app.add_option("--guard-bits", guard_bits, "guard bits (default 2 lossless, 1 lossy)");
   app.add_option("--comment", comment, "COM marker text (default: the encoder's name)");
   app.add_option("--threads", threads, "worker threads (default: all hardware threads)");
+  bool every_pass = false;
+  app.add_flag("--code-every-pass", every_pass,
+               "with a byte target, code every pass of every block instead of stopping far below the predicted threshold");
   app.add_flag("-q,--quiet", quiet, "no summary line");
   std::string timing;
   app.add_flag("--timing{text}", timing, "print the time of each stage after the encode; --timing=json for JSON on stderr");
@@ -256,6 +261,7 @@ int main(int argc, char** argv) {
     else throw std::invalid_argument("--dwt takes cpu, gpu or auto, got \"" + dwt + "\"");
     params.levels = levels;
     params.threads = threads;
+    params.skip_passes = !every_pass;
     params.guard_bits = guard_bits;
     params.sop = sop;
     params.eph = eph;
@@ -284,6 +290,8 @@ int main(int argc, char** argv) {
     auto since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
     const auto t0 = Clock::now();
     const codec::SourceImage image = [&] {
+      // PNM goes straight into the encoder's planes; everything else through the generic reader.
+      if (auto planar = imageio::read_planar_if_native(input)) return codec::to_source_image(std::move(*planar), input);
       const cli::QuietStderr quiet_libraries;
       return codec::to_source_image(imageio::read_image(input), input);
     }();

@@ -11,9 +11,30 @@
 
 #include "imageio/pnm.h"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+// The planar reader must agree with the interleaved one on every input: the same error or the
+// same samples.
+void check_planar(std::span<const std::uint8_t> bytes, const imageio::Image* image) {
   try {
-    const imageio::Image image = imageio::parse_pnm(std::span(data, size), "fuzz-input");
+    const imageio::PlanarImage planar = imageio::parse_pnm_planar(bytes, "fuzz-input");
+    if (image == nullptr || planar.width != image->width || planar.height != image->height ||
+        planar.channels != image->channels || planar.bits_per_sample != image->bits_per_sample ||
+        planar.planes.size() != std::size_t(image->channels))
+      std::abort();
+    const std::size_t pixels = std::size_t(image->width) * std::size_t(image->height);
+    for (std::size_t c = 0; c < planar.planes.size(); ++c) {
+      if (planar.planes[c].size() != pixels) std::abort();
+      for (std::size_t p = 0; p < pixels; ++p)
+        if (float(planar.planes[c][p]) != image->pixels[p * planar.planes.size() + c]) std::abort();
+    }
+  } catch (const imageio::IoError&) {
+    if (image != nullptr) std::abort();
+  }
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::span<const std::uint8_t> bytes(data, size);
+  try {
+    const imageio::Image image = imageio::parse_pnm(bytes, "fuzz-input");
     if (image.width <= 0 || image.height <= 0 || (image.channels != 1 && image.channels != 3) ||
         image.bits_per_sample < 1 || image.bits_per_sample > 16 ||
         image.pixels.size() != std::size_t(image.width) * std::size_t(image.height) * std::size_t(image.channels)) {
@@ -25,8 +46,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (float v : image.pixels) {
       if (!(v >= 0 && v <= top)) std::abort();
     }
+    check_planar(bytes, &image);
   } catch (const imageio::IoError&) {
     // Expected for malformed input.
+    check_planar(bytes, nullptr);
   }
   return 0;
 }

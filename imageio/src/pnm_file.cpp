@@ -34,6 +34,11 @@ Image read_pnm(const std::string& path) {
   return parse_pnm(bytes, path);
 }
 
+PlanarImage read_pnm_planar(const std::string& path) {
+  const std::vector<std::uint8_t> bytes = detail::read_whole_file(path);
+  return parse_pnm_planar(bytes, path);
+}
+
 void write_pnm(const std::string& path, const Image& image) {
   detail::check_layout(path, image);
   if (image.channels != 1 && image.channels != 3) {

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <limits>
 #include <string_view>
+#include <vector>
 
 #include "header_text.h"
 #include "image_checks.h"
@@ -211,55 +212,105 @@ void check_available(PnmReader& reader, std::uint64_t needed, std::uint64_t avai
   }
 }
 
-void read_plain(PnmReader& reader, const Format& format, int maxval, Image& image) {
-  const std::uint64_t samples = image.pixels.size();
+// Where the samples go: interleaved floats (Image), or one integer plane per channel
+// (PlanarImage, which an encoder takes without conversion). Sample index i is pixel i / channels,
+// channel i % channels, in file order.
+struct InterleavedSink {
+  Image& image;
+  void allocate(int width, int height, int channels, int bits, std::size_t samples) {
+    image.width = width;
+    image.height = height;
+    image.channels = channels;
+    image.bits_per_sample = bits;
+    image.pixels.resize(samples);
+  }
+  void put(std::size_t pixel, int channel, unsigned value) {
+    image.pixels[pixel * std::size_t(image.channels) + std::size_t(channel)] = float(value);
+  }
+};
+
+struct PlanarSink {
+  PlanarImage& image;
+  std::vector<std::int32_t*> planes;  // each plane's data, so a store cannot make the loop reload it
+  void allocate(int width, int height, int channels, int bits, std::size_t samples) {
+    image.width = width;
+    image.height = height;
+    image.channels = channels;
+    image.bits_per_sample = bits;
+    image.planes.assign(std::size_t(channels), std::vector<std::int32_t>(samples / std::size_t(channels)));
+    for (auto& plane : image.planes) planes.push_back(plane.data());
+  }
+  void put(std::size_t pixel, int channel, unsigned value) { planes[std::size_t(channel)][pixel] = std::int32_t(value); }
+};
+
+template <class Sink>
+void read_plain(PnmReader& reader, const Format& format, int maxval, std::uint64_t samples, Sink& sink) {
+  const auto channels = std::size_t(format.channels);
   for (std::size_t i = 0; i < samples; ++i) {
-    image.pixels[i] = format.bitmap ? float(1 - reader.read_plain_bit(i, samples))
-                                    : float(reader.read_plain_sample(i, samples, maxval));
+    const unsigned value = format.bitmap ? unsigned(1 - reader.read_plain_bit(i, samples))
+                                         : reader.read_plain_sample(i, samples, maxval);
+    sink.put(i / channels, int(i % channels), value);
   }
 }
 
-void read_raw_bitmap(const std::uint8_t* src, Image& image) {
-  const std::size_t row_bytes = (std::size_t(image.width) + 7) / 8;
-  for (int y = 0; y < image.height; ++y, src += row_bytes) {
-    float* dst = image.pixels.data() + std::size_t(y) * std::size_t(image.width);
-    for (int x = 0; x < image.width; ++x) {
-      const int bit = (src[x / 8] >> (7 - x % 8)) & 1;
-      dst[x] = float(1 - bit);
+template <class Sink>
+void read_raw_bitmap(const std::uint8_t* src, int width, int height, Sink& sink) {
+  const std::size_t row_bytes = (std::size_t(width) + 7) / 8;
+  for (int y = 0; y < height; ++y, src += row_bytes) {
+    const std::size_t row = std::size_t(y) * std::size_t(width);
+    for (int x = 0; x < width; ++x) sink.put(row + std::size_t(x), 0, unsigned(1 - ((src[x / 8] >> (7 - x % 8)) & 1)));
+  }
+}
+
+// `kChecked`: whether a sample can exceed maxval at all (not when maxval is 255 or 65535), so that
+// the common files take a loop without the test.
+template <bool kWide, bool kChecked, int kChannels, class Sink>
+void read_raw_samples(PnmReader& reader, const std::uint8_t* src, int maxval, std::size_t pixels, int channels, Sink& sink) {
+  const int n = kChannels > 0 ? kChannels : channels;
+  for (std::size_t p = 0; p < pixels; ++p)
+    for (int c = 0; c < n; ++c) {
+      unsigned value = src[0];
+      if constexpr (kWide) value = (value << 8) | src[1];  // big-endian
+      src += kWide ? 2 : 1;
+      if constexpr (kChecked)
+        if (value > unsigned(maxval))
+          reader.fail(reader.sample_name(p * std::size_t(n) + std::size_t(c)) + " is " + std::to_string(value) +
+                      ", above maxval " + std::to_string(maxval));
+      sink.put(p, c, value);
     }
-  }
 }
 
-void read_raw(PnmReader& reader, const std::uint8_t* src, int maxval, Image& image) {
+template <class Sink>
+void read_raw(PnmReader& reader, const std::uint8_t* src, int maxval, std::size_t pixels, int channels, Sink& sink) {
   const bool wide = maxval > 255;
-  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-    unsigned value = src[0];
-    if (wide) value = (value << 8) | src[1];  // big-endian
-    src += wide ? 2 : 1;
-    if (value > unsigned(maxval)) {
-      reader.fail(reader.sample_name(i) + " is " + std::to_string(value) + ", above maxval " + std::to_string(maxval));
-    }
-    image.pixels[i] = float(value);
-  }
+  const bool checked = maxval != 255 && maxval != 65535;
+  auto run = [&]<bool kWide, bool kChecked>() {
+    if (channels == 3)
+      read_raw_samples<kWide, kChecked, 3>(reader, src, maxval, pixels, channels, sink);
+    else
+      read_raw_samples<kWide, kChecked, 0>(reader, src, maxval, pixels, channels, sink);
+  };
+  if (wide)
+    checked ? run.template operator()<true, true>() : run.template operator()<true, false>();
+  else
+    checked ? run.template operator()<false, true>() : run.template operator()<false, false>();
 }
 
-}  // namespace
-
-Image parse_pnm(std::span<const std::uint8_t> bytes, const std::string& name_for_errors) {
+template <class Sink>
+void parse_into(std::span<const std::uint8_t> bytes, const std::string& name_for_errors, Sink& sink, Image& shape) {
   PnmReader reader(bytes, name_for_errors);
   const Format format = reader.read_magic();
-  Image image;
-  image.channels = format.channels;
-  image.width = reader.read_dimension("width");
-  image.height = reader.read_dimension("height");
+  shape.channels = format.channels;
+  shape.width = reader.read_dimension("width");
+  shape.height = reader.read_dimension("height");
   const int maxval = format.bitmap ? 1 : reader.read_maxval();
-  image.bits_per_sample = std::bit_width(unsigned(maxval));
-  reader.set_sample_naming(image.width, image.channels);
+  shape.bits_per_sample = std::bit_width(unsigned(maxval));
+  reader.set_sample_naming(shape.width, shape.channels);
 
   // Each dimension is below 2^31, so this product cannot overflow 64 bits.
-  const std::uint64_t samples =
-      std::uint64_t(image.width) * std::uint64_t(image.height) * std::uint64_t(image.channels);
-  check_size(reader, image, samples);
+  const std::uint64_t pixels = std::uint64_t(shape.width) * std::uint64_t(shape.height);
+  const std::uint64_t samples = pixels * std::uint64_t(shape.channels);
+  check_size(reader, shape, samples);
 
   if (format.plain) {
     // What is left starts with the whitespace ending the header; after it
@@ -271,24 +322,40 @@ Image parse_pnm(std::span<const std::uint8_t> bytes, const std::string& name_for
       reader.fail("truncated pixel data: " + std::to_string(samples) + " samples need at least " +
                   std::to_string(min_bytes) + " bytes, found " + std::to_string(reader.remaining()));
     }
-    image.pixels.resize(samples);
-    read_plain(reader, format, maxval, image);
-    return image;
+    sink.allocate(shape.width, shape.height, shape.channels, shape.bits_per_sample, samples);
+    read_plain(reader, format, maxval, samples, sink);
+    return;
   }
 
   const std::size_t data_start = reader.end_of_raw_header();
   const std::uint64_t available = bytes.size() - data_start;
-  const std::uint64_t needed = format.bitmap ? (std::uint64_t(image.width) + 7) / 8 * std::uint64_t(image.height)
+  const std::uint64_t needed = format.bitmap ? (std::uint64_t(shape.width) + 7) / 8 * std::uint64_t(shape.height)
                                              : samples * (maxval > 255 ? 2 : 1);
   check_available(reader, needed, available);
   // Anything after the raster is left alone: it may be the next image.
-  image.pixels.resize(samples);
+  sink.allocate(shape.width, shape.height, shape.channels, shape.bits_per_sample, samples);
   if (format.bitmap) {
-    read_raw_bitmap(bytes.data() + data_start, image);
+    read_raw_bitmap(bytes.data() + data_start, shape.width, shape.height, sink);
   } else {
-    read_raw(reader, bytes.data() + data_start, maxval, image);
+    read_raw(reader, bytes.data() + data_start, maxval, pixels, shape.channels, sink);
   }
+}
+
+}  // namespace
+
+Image parse_pnm(std::span<const std::uint8_t> bytes, const std::string& name_for_errors) {
+  Image image;
+  InterleavedSink sink{image};
+  parse_into(bytes, name_for_errors, sink, image);
   return image;
+}
+
+PlanarImage parse_pnm_planar(std::span<const std::uint8_t> bytes, const std::string& name_for_errors) {
+  PlanarImage planar;
+  PlanarSink sink{planar, {}};
+  Image shape;  // the header's fields, for the checks and messages
+  parse_into(bytes, name_for_errors, sink, shape);
+  return planar;
 }
 
 }  // namespace imageio

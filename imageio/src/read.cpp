@@ -2,6 +2,7 @@
 
 #include "imageio/read.h"
 
+#include <optional>
 #include <string>
 
 #include "file_extension.h"
@@ -15,6 +16,11 @@ Image read_image(const std::string& path) {
   if (detail::has_pfm_extension(path)) return read_pfm(path);
   if (detail::has_pnm_extension(path)) return read_pnm(path);
   return detail::read_through_module(path);
+}
+
+std::optional<PlanarImage> read_planar_if_native(const std::string& path) {
+  if (!detail::has_pnm_extension(path)) return std::nullopt;
+  return read_pnm_planar(path);
 }
 
 Image read_greyscale(const std::string& path) {

@@ -16,8 +16,10 @@
 #include "codec/encoder/dwt_choice.h"
 
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 namespace codec {
 namespace {
@@ -161,8 +163,20 @@ std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& p
   const std::size_t all_blocks = params.progress ? count_code_blocks(plan) : 0;
   report.times.setup = since(setup_start) - report.times.gl_context - report.times.shader_compile;
   std::size_t blocks_before = 0;
+  // Pass skipping needs a byte target: each tile gets its share of the last layer's bytes, less a
+  // little for the headers (the prediction only sets where blocks stop, with a wide margin).
+  const bool skipping = params.skip_passes && !params.lossless && !params.layers.empty() &&
+                        params.layers[0].kind == LayerTarget::Kind::Bytes;
+  auto tile_budget = [&](const Tile& tile) {
+    if (!skipping) return 0.0;
+    double tile_samples = 0;
+    for (const TileComponent& tc : tile.components) tile_samples += static_cast<double>(tc.rect.width() * tc.rect.height());
+    return 0.97 * params.layers.back().value * tile_samples / std::max(1.0, samples);
+  };
   for (int t = 0; t < count; ++t) {
-    tiles.push_back(code_tile(image, plan, params, t, *dwt.backend, reversible_dwt, pool, report.times, blocks_before, all_blocks));
+    const double budget = tile_budget(build_tile(plan.grid, plan.sampling, plan.styles, t));
+    tiles.push_back(code_tile(image, plan, params, t, *dwt.backend, reversible_dwt, pool, report.times, budget, blocks_before,
+                              all_blocks));
     blocks_before += tiles.back().blocks.size();
     for (std::size_t c = 0; c < final_guard.size(); ++c)
       final_guard[c] = std::max(final_guard[c], tiles.back().guard_bits_needed[c]);
@@ -186,7 +200,10 @@ std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& p
   };
 
   const auto rate_start = Clock::now();
-  if (!params.layers.empty()) {
+  double recode_ms = 0;
+  // Rate control; with pass skipping, again after recoding blocks the first allocation found
+  // stopped too soon (at most twice: the recoded blocks have every pass).
+  for (int recode_round = 0; !params.layers.empty(); ++recode_round) {
     // Rate control over every block of the image: one slope threshold per layer (PCRD-opt).
     std::vector<std::vector<rate::HullPoint>> hulls;
     double energy = 0;
@@ -195,7 +212,8 @@ std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& p
         hulls.push_back(rate::convex_hull(tile.blocks[b].passes, tile.block_weights[b]));
         energy += tile.blocks[b].energy * tile.block_weights[b];
       }
-    const rate::RateAllocator allocator(hulls);
+    std::optional<rate::RateAllocator> allocator_storage(std::in_place, hulls);
+    const rate::RateAllocator& allocator = *allocator_storage;
     auto apply = [&](const std::vector<std::vector<int>>& per_layer) {  // [layer][global block]
       std::size_t g = 0;
       for (std::size_t t = 0; t < tiles.size(); ++t)
@@ -282,9 +300,41 @@ std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& p
         }
       }
       apply(best);
+      // Pass skipping's check: a block that stopped early, and that the last layer now takes any
+      // pass of its last coded bit-plane from, may have been stopped too soon. Code those in full
+      // and allocate again; the rest stopped at least a whole bit-plane past the cut.
+      std::vector<std::pair<std::size_t, std::size_t>> starved;  // (tile, block)
+      for (std::size_t t = 0; t < tiles.size(); ++t)
+        for (std::size_t b = 0; b < tiles[t].blocks.size(); ++b) {
+          const t1::EncodedBlock& eb = tiles[t].blocks[b];
+          // The last coded bit-plane's first pass: its cleanup when only the top plane was coded.
+          const int coded = static_cast<int>(eb.passes.size());
+          const int last_plane_start = coded == 1 ? 0 : coded - 3;
+          if (eb.stopped_early && passes[t][b].back() > last_plane_start) starved.emplace_back(t, b);
+        }
+      if (!starved.empty() && recode_round < 2) {
+        report.recoded_blocks += starved.size();
+        const auto recode_start = Clock::now();
+        pool.parallel_for(starved.size(), [&](std::size_t k) {
+          CodedTile& tile = tiles[starved[k].first];
+          const std::size_t b = starved[k].second;
+          for (const BlockJob& job : tile.jobs)
+            if (job.block_index == b) {
+              const int coded_guard = tile.block_magnitude_bitplanes[b] - job.exponent + 1;
+              t1::EncodedBlock eb = code_block(tile, job, params, coded_guard);
+              eb.missing_msbs = tile.blocks[b].missing_msbs;  // unchanged: the same bit-planes
+              tile.blocks[b] = std::move(eb);
+              break;
+            }
+        });
+        recode_ms += since(recode_start);
+        report.times.tier1 += since(recode_start);
+        continue;
+      }
     }
+    break;
   }
-  report.times.rate_control = since(rate_start);
+  report.times.rate_control = since(rate_start) - recode_ms;
   const auto tier2_start = Clock::now();
   std::vector<std::uint8_t> bytes = assemble();
   report.times.tier2 = since(tier2_start);

@@ -12,7 +12,10 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include "codec/encoder/quantization.h"
+#include "codec/rate/hull.h"
+#include "codec/rate/selection.h"
 #include "dwt/norms.h"
 #include "codec/structure/error.h"
 
@@ -120,90 +123,160 @@ CodingPlan make_plan(const SourceImage& image, const EncodeParams& params) {
   return plan;
 }
 
-CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params, int tile_index,
-                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool, StageTimes& times,
-                    std::size_t progress_base, std::size_t progress_total) {
-  using Clock = std::chrono::steady_clock;
-  auto since = [](Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); };
-  auto clock = Clock::now();
-  auto* gpu = dynamic_cast<dwt_gpu::GpuBackend*>(&dwt);
-  CodedTile coded;
-  coded.tile = build_tile(plan.grid, plan.sampling, plan.styles, tile_index);
-  Tile& tile = coded.tile;
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+// Rows of a plane in chunks of this many, one pool item each: large enough to amortise the
+// hand-out, small enough to balance two to sixteen threads.
+constexpr std::size_t kRowsPerItem = 16;
+
+// Stage 1: each tile-component's samples, DC level shifted (T.800 G.1.2) and, for three equal
+// components, through the RCT or ICT (G.2, G.3), in one pass over the source, by row chunks.
+// Lossless planes are integers; lossy ones floats, ready for the 9/7.
+struct TilePlanes {
+  std::vector<std::vector<std::int32_t>> integers;  // lossless
+  std::vector<std::vector<float>> floats;           // lossy
+};
+
+TilePlanes load_tile_planes(const SourceImage& image, const CodingPlan& plan, const Tile& tile, bool lossless,
+                            dwt_cpu::ThreadPool& pool) {
   const std::size_t nc = tile.components.size();
-
-  // Samples of each tile-component, level shifted; then the component transform and the DWT into
-  // the Mallat layout; lossy planes are quantised band by band into the same integer layout.
-  std::vector<std::vector<std::int32_t>> planes(nc);
-  std::vector<std::vector<float>> float_planes(params.lossless ? 0 : nc);
-  std::vector<std::vector<std::uint8_t>> fractions(params.lossless ? 0 : nc);  // see quantize()
+  TilePlanes out;
+  (lossless ? out.integers.resize(nc) : out.floats.resize(nc));
   for (std::size_t c = 0; c < nc; ++c) {
-    const TileComponent& tc = tile.components[c];
-    const auto w = static_cast<std::size_t>(tc.rect.width()), h = static_cast<std::size_t>(tc.rect.height());
-    planes[c].resize(w * h);
-    const SourceComponent& src = image.components[c];
-    for (std::size_t y = 0; y < h; ++y) {
-      const std::size_t sy = static_cast<std::size_t>(tc.rect.y0 - plan.grid.image.y0) + y;
-      const std::size_t sx = static_cast<std::size_t>(tc.rect.x0 - plan.grid.image.x0);
-      std::copy_n(src.samples.begin() + static_cast<std::ptrdiff_t>(sy * static_cast<std::size_t>(image.width) + sx), w,
-                  planes[c].begin() + static_cast<std::ptrdiff_t>(y * w));
-    }
-    if (!src.is_signed) dc_shift_forward(planes[c], src.precision);
-    if (!params.lossless) float_planes[c].assign(planes[c].begin(), planes[c].end());
+    const std::size_t n = static_cast<std::size_t>(tile.components[c].rect.width()) *
+                          static_cast<std::size_t>(tile.components[c].rect.height());
+    lossless ? out.integers[c].resize(n) : out.floats[c].resize(n);
   }
-  if (plan.rct) rct_forward(planes[0], planes[1], planes[2]);
-  if (plan.ict) ict_forward(float_planes[0], float_planes[1], float_planes[2]);
-  times.level_shift += since(clock);
+  const bool mct = plan.rct || plan.ict;
+  const TileComponent& first = tile.components[0];
+  const auto w = static_cast<std::size_t>(first.rect.width()), h = static_cast<std::size_t>(first.rect.height());
+  auto source_row = [&](std::size_t c, std::size_t y) {
+    const TileComponent& tc = tile.components[c];
+    const std::size_t sy = static_cast<std::size_t>(tc.rect.y0 - plan.grid.image.y0) + y;
+    const std::size_t sx = static_cast<std::size_t>(tc.rect.x0 - plan.grid.image.x0);
+    return image.components[c].samples.data() + sy * static_cast<std::size_t>(image.width) + sx;
+  };
+  auto shift_of = [&](std::size_t c) {
+    const SourceComponent& src = image.components[c];
+    return src.is_signed ? 0 : std::int32_t{1} << (src.precision - 1);
+  };
+  // The component transform's three components share one geometry (make_plan checks it).
+  if (mct) {
+    const std::int32_t s0 = shift_of(0), s1 = shift_of(1), s2 = shift_of(2);
+    pool.parallel_for((h + kRowsPerItem - 1) / kRowsPerItem, [&](std::size_t item) {
+      for (std::size_t y = item * kRowsPerItem; y < std::min(h, (item + 1) * kRowsPerItem); ++y) {
+        const std::int32_t *r = source_row(0, y), *g = source_row(1, y), *b = source_row(2, y);
+        if (lossless) {
+          rct_forward_row(r, g, b, s0, s1, s2, out.integers[0].data() + y * w, out.integers[1].data() + y * w,
+                          out.integers[2].data() + y * w, w);
+        } else {
+          ict_forward_row(r, g, b, s0, s1, s2, out.floats[0].data() + y * w, out.floats[1].data() + y * w,
+                          out.floats[2].data() + y * w, w);
+        }
+      }
+    });
+  }
+  for (std::size_t c = mct ? 3 : 0; c < nc; ++c) {
+    const TileComponent& tc = tile.components[c];
+    const auto cw = static_cast<std::size_t>(tc.rect.width()), ch = static_cast<std::size_t>(tc.rect.height());
+    const std::int32_t shift = shift_of(c);
+    pool.parallel_for((ch + kRowsPerItem - 1) / kRowsPerItem, [&](std::size_t item) {
+      for (std::size_t y = item * kRowsPerItem; y < std::min(ch, (item + 1) * kRowsPerItem); ++y) {
+        const std::int32_t* src = source_row(c, y);
+        if (lossless)
+          for (std::size_t x = 0; x < cw; ++x) out.integers[c][y * cw + x] = src[x] - shift;
+        else
+          for (std::size_t x = 0; x < cw; ++x) out.floats[c][y * cw + x] = static_cast<float>(src[x] - shift);
+      }
+    });
+  }
+  return out;
+}
 
-  for (std::size_t c = 0; c < nc; ++c) {
+dwt::DwtParams dwt_params(const TileComponent& tc, bool lossless) {
+  dwt::DwtParams p;
+  p.kernel = lossless ? dwt::KernelId::Reversible53 : dwt::KernelId::Irreversible97;
+  p.boundary = dwt::Boundary::Symmetric;
+  p.levels = tc.levels;
+  p.origin = dwt::Origin{tc.rect.x0, tc.rect.y0};
+  p.levels_may_exceed_size = true;
+  return p;
+}
+
+// Stage 2: the forward DWT of every tile-component, into the Mallat layout, in place.
+void transform_planes(const Tile& tile, TilePlanes& planes, bool lossless, dwt::DwtBackend& dwt,
+                      dwt::DwtBackend& reversible_dwt, StageTimes& times) {
+  auto* gpu = dynamic_cast<dwt_gpu::GpuBackend*>(&dwt);
+  for (std::size_t c = 0; c < tile.components.size(); ++c) {
     const TileComponent& tc = tile.components[c];
     if (tc.rect.empty()) continue;
     const int w = static_cast<int>(tc.rect.width()), h = static_cast<int>(tc.rect.height());
-    dwt::DwtParams p;
-    p.kernel = params.lossless ? dwt::KernelId::Reversible53 : dwt::KernelId::Irreversible97;
-    p.boundary = dwt::Boundary::Symmetric;
-    p.levels = tc.levels;
-    p.origin = dwt::Origin{tc.rect.x0, tc.rect.y0};
-    p.levels_may_exceed_size = true;
-    clock = Clock::now();
-    if (params.lossless) {
-      reversible_dwt.forward(dwt::make_span(planes[c].data(), w, h), p);
-      times.dwt += since(clock);
+    const auto clock = Clock::now();
+    if (lossless) {
+      reversible_dwt.forward(dwt::make_span(planes.integers[c].data(), w, h), dwt_params(tc, true));
+      times.dwt += ms_since(clock);
       continue;
     }
-    dwt.forward(dwt::make_span(float_planes[c].data(), w, h), p);
+    dwt.forward(dwt::make_span(planes.floats[c].data(), w, h), dwt_params(tc, false));
     if (gpu) {
       // The GPU splits its own time; anything around it (validation, tables) counts as upload.
       const dwt_gpu::GpuTimings& g = gpu->last_timings();
-      const double whole = since(clock);
+      const double whole = ms_since(clock);
       times.dwt += g.compute_ms;
       times.download += g.download_ms;
       times.upload += whole - g.compute_ms - g.download_ms - g.context_ms - g.compile_ms;
       times.gl_context += g.context_ms;
       times.shader_compile += g.compile_ms;
     } else {
-      times.dwt += since(clock);
+      times.dwt += ms_since(clock);
     }
-    clock = Clock::now();
+  }
+}
+
+// Stage 3 (lossy): dead-zone quantisation of every band into integer indices and the fractions
+// tier-1 measures distortion with, by row chunks; each band's largest magnitude comes back OR-ed
+// (same highest bit) for the guard-bit check.
+void quantize_planes(const Tile& tile, const CodingPlan& plan, TilePlanes& planes, CodedTile& coded,
+                     dwt_cpu::ThreadPool& pool) {
+  const std::size_t nc = tile.components.size();
+  coded.quantized.resize(nc);
+  coded.fractions.resize(nc);
+  for (std::size_t c = 0; c < nc; ++c) {
+    const TileComponent& tc = tile.components[c];
+    const auto w = static_cast<std::size_t>(tc.rect.width());
+    coded.quantized[c].resize(planes.floats[c].size());
+    coded.fractions[c].resize(planes.floats[c].size());
     const ComponentQuantization& q = plan.quantization[c];
-    fractions[c].assign(planes[c].size(), 0);
     int band_index = 0;
     for (const Resolution& res : tc.resolutions)
       for (const Subband& b : res.bands) {
         const auto inverse_step = static_cast<float>(1.0 / q.steps[static_cast<std::size_t>(band_index++)]);
-        for (int y = 0; y < b.layout.height; ++y) {
-          const std::size_t row = static_cast<std::size_t>(b.layout.y + y) * static_cast<std::size_t>(w) +
-                                  static_cast<std::size_t>(b.layout.x);
-          for (int x = 0; x < b.layout.width; ++x)
-            planes[c][row + static_cast<std::size_t>(x)] =
-                quantize(float_planes[c][row + static_cast<std::size_t>(x)], inverse_step, fractions[c][row + static_cast<std::size_t>(x)]);
-        }
+        const auto rows = static_cast<std::size_t>(b.layout.height);
+        pool.parallel_for((rows + kRowsPerItem - 1) / kRowsPerItem, [&](std::size_t item) {
+          // Raw pointers: the fraction stores are char-typed and may alias anything, which would
+          // make the compiler reload a vector's data pointer after each.
+          std::int32_t* const indices = coded.quantized[c].data();
+          std::uint8_t* const fractions = coded.fractions[c].data();
+          const float* const coefficients = planes.floats[c].data();
+          const auto band_width = static_cast<std::size_t>(b.layout.width);
+          for (std::size_t y = item * kRowsPerItem; y < std::min(rows, (item + 1) * kRowsPerItem); ++y) {
+            const std::size_t row = (static_cast<std::size_t>(b.layout.y) + y) * w + static_cast<std::size_t>(b.layout.x);
+            for (std::size_t x = 0; x < band_width; ++x)
+              indices[row + x] = quantize(coefficients[row + x], inverse_step, fractions[row + x]);
+          }
+        });
       }
-    times.quantization += since(clock);
+    std::vector<float>().swap(planes.floats[c]);  // the floats are done with
   }
-  clock = Clock::now();
+}
 
-  // Guard bits: each component's coefficients must fit Mb = G + exponent - 1 magnitude bits.
+// Guard bits: each component's coefficients must fit Mb = G + exponent - 1 magnitude bits.
+void check_guard_bits(const Tile& tile, const CodingPlan& plan, const std::vector<std::vector<std::int32_t>>& planes,
+                      CodedTile& coded) {
+  const std::size_t nc = tile.components.size();
   coded.guard_bits_needed.assign(nc, 0);
   for (std::size_t c = 0; c < nc; ++c) {
     const TileComponent& tc = tile.components[c];
@@ -211,76 +284,167 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
     int band_index = 0;
     for (const Resolution& res : tc.resolutions)
       for (const Subband& b : res.bands) {
-        std::int64_t peak = 0;
-        for (int y = 0; y < b.layout.height; ++y)
-          for (int x = 0; x < b.layout.width; ++x)
-            peak = std::max<std::int64_t>(peak, std::llabs(planes[c][static_cast<std::size_t>(b.layout.y + y) * static_cast<std::size_t>(tc.rect.width()) +
-                                                                      static_cast<std::size_t>(b.layout.x + x)]));
+        std::uint32_t any = 0;  // OR of magnitudes: the same highest bit as their maximum
+        for (int y = 0; y < b.layout.height; ++y) {
+          const std::int32_t* row = planes[c].data() + static_cast<std::size_t>(b.layout.y + y) * static_cast<std::size_t>(tc.rect.width()) +
+                                    static_cast<std::size_t>(b.layout.x);
+          for (int x = 0; x < b.layout.width; ++x) {
+            const std::int32_t v = row[x];
+            any |= v < 0 ? 0u - static_cast<std::uint32_t>(v) : static_cast<std::uint32_t>(v);
+          }
+        }
         const int exponent = q.exponents[static_cast<std::size_t>(band_index++)];
-        coded.guard_bits_needed[c] = std::max(coded.guard_bits_needed[c], bits_for(peak) - exponent + 1);
+        coded.guard_bits_needed[c] = std::max(coded.guard_bits_needed[c], bits_for(any) - exponent + 1);
       }
     if (std::max(q.guard_bits, coded.guard_bits_needed[c]) > 7)
       throw EncodeError("component " + std::to_string(c) + "'s wavelet coefficients need more than 7 guard bits");
   }
+}
 
-  // Tier-1 on every code-block, in parallel. Mb is computed with the plan's guard bits; the caller
-  // raises missing_msbs if some tile needed more (the coded bit-planes do not depend on Mb).
-  struct Job {
-    std::size_t component;
-    const Subband* band;
-    const CodeBlock* block;
-    int exponent;
-    int band_index;  // QCD order
-  };
-  std::vector<Job> jobs;
-  for (std::size_t c = 0; c < nc; ++c) {
+// Stage 4's work list: every code-block of the tile, in (component, resolution, precinct, band)
+// order, with what tier-1 and rate control need to know of it.
+std::vector<BlockJob> block_jobs(const Tile& tile, const CodingPlan& plan, bool lossless) {
+  std::vector<BlockJob> jobs;
+  for (std::size_t c = 0; c < tile.components.size(); ++c) {
     const TileComponent& tc = tile.components[c];
+    const ComponentQuantization& q = plan.quantization[c];
     for (const Resolution& res : tc.resolutions) {
       const int first_band_index = res.r == 0 ? 0 : 1 + 3 * (res.r - 1);
       for (const Precinct& p : res.precincts)
         for (const PrecinctBand& pb : p.bands)
-          for (const CodeBlock& cb : pb.blocks)
-            jobs.push_back(Job{c, &res.bands[static_cast<std::size_t>(pb.band)], &cb,
-                               plan.quantization[c].exponents[static_cast<std::size_t>(first_band_index + pb.band)],
-                               first_band_index + pb.band});
+          for (const CodeBlock& cb : pb.blocks) {
+            const Subband& band = res.bands[static_cast<std::size_t>(pb.band)];
+            const auto band_index = static_cast<std::size_t>(first_band_index + pb.band);
+            BlockJob job;
+            job.component = c;
+            job.block_index = cb.index;
+            job.orientation = to_t1(band.orientation);
+            job.x0 = band.layout.x + (cb.rect.x0 - band.rect.x0);
+            job.y0 = band.layout.y + (cb.rect.y0 - band.rect.y0);
+            job.width = static_cast<int>(cb.rect.width());
+            job.height = static_cast<int>(cb.rect.height());
+            job.plane_width = tc.rect.width();
+            job.exponent = q.exponents[band_index];
+            if (!lossless) {
+              const double step = q.steps[band_index], norm = q.norms[band_index];
+              job.weight = step * step * norm * norm * q.component_weight;
+            }
+            jobs.push_back(job);
+          }
     }
   }
-  std::atomic<std::size_t> finished{0};
-  coded.blocks.resize(tile.code_blocks);
-  coded.block_weights.assign(tile.code_blocks, 1.0);
-  coded.block_magnitude_bitplanes.assign(tile.code_blocks, 0);
-  pool.parallel_for(jobs.size(), [&](std::size_t i) {
-    const Job& job = jobs[i];
-    const TileComponent& tc = tile.components[job.component];
-    const ComponentQuantization& q = plan.quantization[job.component];
-    const int guard = std::max(q.guard_bits, coded.guard_bits_needed[job.component]);
-    const auto w = static_cast<int>(job.block->rect.width()), h = static_cast<int>(job.block->rect.height());
-    thread_local std::vector<std::int32_t> buffer;
-    buffer.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
-    thread_local std::vector<std::uint8_t> fraction_buffer;
-    fraction_buffer.resize(params.lossless ? 0 : buffer.size());
-    const std::int64_t x0 = job.band->layout.x + (job.block->rect.x0 - job.band->rect.x0);
-    const std::int64_t y0 = job.band->layout.y + (job.block->rect.y0 - job.band->rect.y0);
-    for (int y = 0; y < h; ++y)
-      std::copy_n(planes[job.component].begin() + static_cast<std::ptrdiff_t>((y0 + y) * tc.rect.width() + x0), w,
-                  buffer.begin() + static_cast<std::ptrdiff_t>(y) * w);
-    if (!params.lossless)
-      for (int y = 0; y < h; ++y)
-        std::copy_n(fractions[job.component].begin() + static_cast<std::ptrdiff_t>((y0 + y) * tc.rect.width() + x0), w,
-                    fraction_buffer.begin() + static_cast<std::ptrdiff_t>(y) * w);
-    coded.block_magnitude_bitplanes[job.block->index] = guard + job.exponent - 1;
-    t1::EncodedBlock eb = t1::encode_block(buffer, w, h, to_t1(job.band->orientation), guard + job.exponent - 1,
-                                           params.block_style, fraction_buffer);
-    eb.missing_msbs -= guard - q.guard_bits;  // expressed against the plan's guard bits for now
-    coded.blocks[job.block->index] = std::move(eb);
-    if (params.progress) params.progress(progress_base + finished.fetch_add(1) + 1, progress_total);
-    if (!params.lossless) {
-      const double step = q.steps[static_cast<std::size_t>(job.band_index)], norm = q.norms[static_cast<std::size_t>(job.band_index)];
-      coded.block_weights[job.block->index] = step * step * norm * norm * q.component_weight;
+  return jobs;
+}
+
+// Predicts the final slope threshold from a sample of blocks coded in full: the threshold at which
+// the sample spends its share of `budget` (its share of the tile's coefficients).
+double predict_threshold(const std::vector<BlockJob>& jobs, const CodedTile& coded, const std::vector<std::size_t>& sample,
+                         double budget) {
+  double sample_coefficients = 0, all_coefficients = 0;
+  for (const BlockJob& j : jobs) all_coefficients += static_cast<double>(j.width) * j.height;
+  std::vector<std::vector<rate::HullPoint>> hulls;
+  for (std::size_t i : sample) {
+    const BlockJob& j = jobs[i];
+    sample_coefficients += static_cast<double>(j.width) * j.height;
+    hulls.push_back(rate::convex_hull(coded.blocks[j.block_index].passes, j.weight));
+  }
+  const double share = budget * sample_coefficients / std::max(1.0, all_coefficients);
+  auto bytes_at = [&](double threshold) {
+    double bytes = 0;
+    for (const auto& hull : hulls) {
+      const std::size_t points = rate::points_at_or_above(hull, threshold);
+      if (points > 0) bytes += static_cast<double>(hull[points - 1].bytes);
     }
-  });
-  times.tier1 += since(clock);
-  if (!params.lossless) coded.quantized = std::move(planes);
+    return bytes;
+  };
+  // Bisect on the logarithm: slopes span many decades.
+  double lo = -60, hi = 60;  // log2 of the threshold
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (bytes_at(std::exp2(mid)) > share ? lo : hi) = mid;
+  }
+  return std::exp2(hi);
+}
+
+}  // namespace
+
+t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params, int guard_bits,
+                            t1::StopRule stop) {
+  const bool lossless = params.lossless;
+  const auto w = job.width, h = job.height;
+  thread_local std::vector<std::int32_t> buffer;
+  thread_local std::vector<std::uint8_t> fraction_buffer;
+  buffer.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  fraction_buffer.resize(lossless ? 0 : buffer.size());
+  const std::vector<std::int32_t>& plane = coded.quantized[job.component];
+  for (int y = 0; y < h; ++y) {
+    const std::size_t from = static_cast<std::size_t>((job.y0 + y) * job.plane_width + job.x0);
+    std::copy_n(plane.begin() + static_cast<std::ptrdiff_t>(from), w, buffer.begin() + static_cast<std::ptrdiff_t>(y) * w);
+    if (!lossless)
+      std::copy_n(coded.fractions[job.component].begin() + static_cast<std::ptrdiff_t>(from), w,
+                  fraction_buffer.begin() + static_cast<std::ptrdiff_t>(y) * w);
+  }
+  stop.weight = job.weight;
+  return t1::encode_block(buffer, w, h, job.orientation, guard_bits + job.exponent - 1, params.block_style,
+                          fraction_buffer, stop);
+}
+
+CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params, int tile_index,
+                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool, StageTimes& times,
+                    double tier1_budget, std::size_t progress_base, std::size_t progress_total) {
+  auto clock = Clock::now();
+  CodedTile coded;
+  coded.tile = build_tile(plan.grid, plan.sampling, plan.styles, tile_index);
+  const Tile& tile = coded.tile;
+  const bool lossless = params.lossless;
+
+  TilePlanes planes = load_tile_planes(image, plan, tile, lossless, pool);
+  times.level_shift += ms_since(clock);
+  transform_planes(tile, planes, lossless, dwt, reversible_dwt, times);
+  clock = Clock::now();
+  if (lossless)
+    coded.quantized = std::move(planes.integers);
+  else
+    quantize_planes(tile, plan, planes, coded, pool);
+  check_guard_bits(tile, plan, coded.quantized, coded);
+  times.quantization += ms_since(clock);
+  clock = Clock::now();
+
+  // Tier-1 on every code-block, in parallel. Mb is computed with the plan's guard bits; the caller
+  // raises missing_msbs if some tile needed more (the coded bit-planes do not depend on Mb).
+  coded.jobs = block_jobs(tile, plan, lossless);
+  coded.blocks.resize(tile.code_blocks);
+  coded.block_magnitude_bitplanes.assign(tile.code_blocks, 0);
+  coded.block_weights.assign(tile.code_blocks, 1.0);
+  for (const BlockJob& job : coded.jobs) coded.block_weights[job.block_index] = job.weight;
+  std::atomic<std::size_t> finished{0};
+  auto run = [&](const std::vector<std::size_t>& which, t1::StopRule stop) {
+    pool.parallel_for(which.size(), [&](std::size_t k) {
+      const BlockJob& job = coded.jobs[which[k]];
+      const int plan_guard = plan.quantization[job.component].guard_bits;
+      const int guard = std::max(plan_guard, coded.guard_bits_needed[job.component]);
+      t1::EncodedBlock eb = code_block(coded, job, params, guard, stop);
+      eb.missing_msbs -= guard - plan_guard;  // expressed against the plan's guard bits for now
+      coded.block_magnitude_bitplanes[job.block_index] = guard + job.exponent - 1;
+      coded.blocks[job.block_index] = std::move(eb);
+      if (params.progress) params.progress(progress_base + finished.fetch_add(1) + 1, progress_total);
+    });
+  };
+  std::vector<std::size_t> all(coded.jobs.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  if (tier1_budget <= 0 || coded.jobs.size() < 64) {
+    run(all, {});
+  } else {
+    // Code only what the budget keeps: a sample of one block in eight in full, the threshold
+    // it predicts, then every other block until its bit-planes fall well below that threshold.
+    // The encoder recodes in full any block the final allocation cuts near where it stopped.
+    std::vector<std::size_t> sample, rest;
+    for (std::size_t i : all) (i % kSampleStride == 0 ? sample : rest).push_back(i);
+    run(sample, {});
+    coded.stop_threshold = predict_threshold(coded.jobs, coded, sample, tier1_budget) / kStopSafety;
+    run(rest, t1::StopRule{coded.stop_threshold, 1});
+  }
+  times.tier1 += ms_since(clock);
   return coded;
 }
 

@@ -14,6 +14,8 @@ namespace codec::t1 {
 
 namespace {
 
+constexpr int kQuietPlanesToStop = 2;
+
 void validate(std::span<const std::int32_t> coefficients, int width, int height, int magnitude_bitplanes) {
   if (width < 1 || height < 1)
     throw std::invalid_argument("code-block must be at least 1x1, got " + std::to_string(width) + "x" +
@@ -110,7 +112,8 @@ double code_pass(int pass, int plane, bool raw, const BlockView& v, const ZeroCo
 }  // namespace
 
 EncodedBlock encode_block(std::span<const std::int32_t> coefficients, int width, int height, Orientation o,
-                          int magnitude_bitplanes, BlockStyle style, std::span<const std::uint8_t> fractions) {
+                          int magnitude_bitplanes, BlockStyle style, std::span<const std::uint8_t> fractions,
+                          StopRule stop) {
   validate(coefficients, width, height, magnitude_bitplanes);
   if (!fractions.empty() && fractions.size() != coefficients.size())
     throw std::invalid_argument("code-block given " + std::to_string(fractions.size()) + " fractions for " +
@@ -134,13 +137,35 @@ EncodedBlock encode_block(std::span<const std::int32_t> coefficients, int width,
   ContextSet cx;
   reset_contexts(cx);
   SegmentTracker seg(out, style);
+  double plane_gain = 0;         // distortion bought by the bit-plane being coded so far
+  std::size_t plane_start = 0;   // estimated bytes when it began
+  int quiet_planes = 0;          // bit-planes in a row that bought less than stop.min_slope
   for (int pass = 0; pass < count; ++pass) {
     const bool raw = pass_is_raw(pass, style);
     seg.begin_pass_if_needed(raw);
-    out.passes[static_cast<std::size_t>(pass)].distortion_decrease =
-        code_pass(pass, pass_plane(pass, planes), raw, v, zc, cx, seg, style);
-    seg.pass_done(pass, raw, pass_ends_segment(pass, count, style));
+    const double gain = code_pass(pass, pass_plane(pass, planes), raw, v, zc, cx, seg, style);
+    out.passes[static_cast<std::size_t>(pass)].distortion_decrease = gain;
+    plane_gain += gain;
+    bool last = false;
+    if (stop.min_slope > 0 && pass + 1 < count && pass_kind(pass) == PassKind::Cleanup) {
+      // A cleanup pass is always arithmetic coded, so the MQ coder's state tells the bytes so far.
+      const MqTruncationPoint point = seg.mq().truncation_point();
+      const std::size_t bytes = point.committed + static_cast<std::size_t>((point.buffered_bits + 7) / 8);
+      const double spent = static_cast<double>(std::max<std::size_t>(bytes, plane_start + 1) - plane_start);
+      // Two bit-planes in a row below the threshold: the first planes of a block can be poor value
+      // (few coefficients, and the MQ coder still learning) and yet be followed by rich ones.
+      quiet_planes = stop.weight * plane_gain / spent < stop.min_slope ? quiet_planes + 1 : 0;
+      last = quiet_planes >= kQuietPlanesToStop;
+      plane_gain = 0;
+      plane_start = bytes;
+    }
+    seg.pass_done(pass, raw, last || pass_ends_segment(pass, count, style));
     if (style.reset) reset_contexts(cx);
+    if (last) {
+      out.passes.resize(static_cast<std::size_t>(pass) + 1);
+      out.stopped_early = true;
+      break;
+    }
   }
   return out;
 }

@@ -2,6 +2,7 @@
 
 #include <cassert>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "imageio/error.h"
@@ -37,6 +38,16 @@ struct Image {
                static_cast<std::size_t>(channels) +
            static_cast<std::size_t>(c);
   }
+};
+
+// Integer samples, one plane per channel (each row-major, top row first): what an encoder that
+// codes components apart takes, with no conversion. Unsigned, 1..16 bits.
+struct PlanarImage {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  int bits_per_sample = 0;
+  std::vector<std::vector<std::int32_t>> planes;
 };
 
 }  // namespace imageio

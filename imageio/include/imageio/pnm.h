@@ -42,6 +42,10 @@ Image parse_pnm(std::span<const std::uint8_t> bytes, const std::string& name_for
 
 Image read_pnm(const std::string& path);
 
+// The same file, the same checks and errors, straight into one integer plane per channel.
+PlanarImage parse_pnm_planar(std::span<const std::uint8_t> bytes, const std::string& name_for_errors);
+PlanarImage read_pnm_planar(const std::string& path);
+
 // Writes a raw PNM: 1 channel as P5, 3 channels as P6, any other channel
 // count is an IoError. The file's maxval is 2^bits_per_sample - 1, so samples
 // are written unchanged; bits_per_sample must be 1..16, samples unsigned

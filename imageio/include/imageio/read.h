@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "imageio/image.h"
@@ -14,6 +15,10 @@ namespace imageio {
 // files give is_float.
 // Throws IoError for missing, unreadable, truncated or unsupported files.
 Image read_image(const std::string& path);
+
+// PNM files (by name, as read_image decides) straight into integer planes, with read_pnm's
+// checks and errors; nothing for any other file, which read_image then reads.
+std::optional<PlanarImage> read_planar_if_native(const std::string& path);
 
 // read_image, but the image must have exactly one channel.
 Image read_greyscale(const std::string& path);

@@ -37,6 +37,19 @@ struct EncodedBlock {
   double energy = 0.0;
   int missing_msbs = 0;  // zero bit-planes for the packet header: Mb minus the bit-planes coded
   std::vector<PassInfo> passes;
+  // Whether a StopRule ended the coding before the last pass the coefficients have (the block's
+  // bit-planes would give 3 * planes - 2).
+  bool stopped_early = false;
+};
+
+// Where a rate-aware encoder may stop coding a block (DESIGN.md, "rate-aware tier-1"): after the
+// cleanup pass that ends a bit-plane, once that bit-plane and the one before it each bought less
+// than `min_slope` weighted distortion per byte (weight * distortion decrease / bytes, the bytes
+// estimated from the coder's state). The codeword is then terminated there, as if that pass were
+// the last. 0: every pass.
+struct StopRule {
+  double min_slope = 0;
+  double weight = 1;
 };
 
 // Tier-1 (EBCOT) coding of one code-block, T.800 Annex D. `coefficients` holds width * height
@@ -52,6 +65,7 @@ struct EncodedBlock {
 // than against the index. Empty: the index is the coefficient (reversible coding).
 // Throws std::invalid_argument for inconsistent arguments.
 EncodedBlock encode_block(std::span<const std::int32_t> coefficients, int width, int height, Orientation o,
-                          int magnitude_bitplanes, BlockStyle style, std::span<const std::uint8_t> fractions = {});
+                          int magnitude_bitplanes, BlockStyle style, std::span<const std::uint8_t> fractions = {},
+                          StopRule stop = {});
 
 }  // namespace codec::t1

@@ -5,6 +5,7 @@
 
 namespace imageio {
 struct Image;
+struct PlanarImage;
 }
 
 namespace codec {
@@ -24,5 +25,7 @@ struct SourceImage {
 // Converts a decoded file to components, keeping its precision. Float images and sample types
 // beyond 16 bits are refused with an EncodeError naming `path`.
 SourceImage to_source_image(const imageio::Image& image, const std::string& path);
+// The same checks; the planes are moved, not copied.
+SourceImage to_source_image(imageio::PlanarImage&& image, const std::string& path);
 
 }  // namespace codec

@@ -26,6 +26,24 @@ struct ComponentQuantization {
   int magnitude_bitplanes(int exponent) const { return guard_bits + exponent - 1; }  // Mb, E-2
 };
 
+// One code-block as tier-1 and rate control see it: where its indices lie, its band, its weight.
+struct BlockJob {
+  std::size_t component = 0;
+  std::size_t block_index = 0;  // CodeBlock::index
+  t1::Orientation orientation = t1::Orientation::LL;
+  std::int64_t x0 = 0, y0 = 0;  // in the tile-component's Mallat layout
+  int width = 0, height = 0;
+  std::int64_t plane_width = 0;
+  int exponent = 0;             // the band's epsilon_b
+  double weight = 1;            // image-domain squared error per unit of tier-1 distortion (lossy)
+};
+
+// Pass skipping (code_tile): one block in kSampleStride is coded in full to predict the final
+// slope threshold; the others stop once a bit-plane buys less than that threshold / kStopSafety.
+// 16 is about two bit-planes of margin: a plane's slope falls about fourfold from one to the next.
+inline constexpr std::size_t kSampleStride = 8;
+inline constexpr double kStopSafety = 8;
+
 // A tile after the wavelet transform and tier-1: geometry plus each code-block's codeword.
 struct CodedTile {
   Tile tile;
@@ -36,6 +54,9 @@ struct CodedTile {
   // Lossy: the quantisation indices of each tile-component in the Mallat layout, kept so the encoder
   // can rebuild what a decoder sees and measure true error (PSNR targets).
   std::vector<std::vector<std::int32_t>> quantized;
+  std::vector<std::vector<std::uint8_t>> fractions;  // lossy: what the indices drop (quantize())
+  std::vector<BlockJob> jobs;                        // every block, for recoding
+  double stop_threshold = 0;                         // the StopRule tier-1 ran with; 0: every pass
   std::vector<int> guard_bits_needed;    // per component: the fewest guard bits its coefficients fit in
 };
 
@@ -54,9 +75,15 @@ CodingPlan make_plan(const SourceImage& image, const EncodeParams& params);
 // DC shift, component transform, DWT (the 9/7 on `dwt`, the reversible 5/3 on `reversible_dwt`,
 // which must take integer planes), quantisation and tier-1 for one tile.
 struct StageTimes;
+// `tier1_budget` > 0: the tile's share of the code-block bytes a byte target leaves, for pass
+// skipping; 0 codes every pass.
 CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params, int tile_index,
                     dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool, StageTimes& times,
-                    std::size_t progress_base = 0, std::size_t progress_total = 0);
+                    double tier1_budget = 0, std::size_t progress_base = 0, std::size_t progress_total = 0);
+
+// Tier-1 of one block of a coded tile, from its kept indices, with `guard_bits` for Mb.
+t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params, int guard_bits,
+                            t1::StopRule stop = {});
 
 // Code-blocks of the whole image, for progress reports.
 std::size_t count_code_blocks(const CodingPlan& plan);
