@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job on a fresh Debian 12 machine: set up, build, run DWT round trips through dwtool on the
 # CPU and the GPU (whatever renderer the GL layer finds), encode an image losslessly and lossily and
-# check both through OpenJPEG, then the DWT benchmark and the thesis' Table 4.1 and 4.2 runs.
+# check both through OpenJPEG, then the DWT benchmark, the thesis' Table 4.1 and 4.2 runs and the
+# encoder speed benchmark.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -44,6 +45,9 @@ if [ -f "$kodak/kodim01.png" ]; then
 else
   $python3 bench/psnr
 fi
+
+echo "== Encoder speed: j2kenc against OpenJPEG, Grok and OpenJPH on the 2048x2048 mosaic (bench/speed)"
+$python3 bench/speed --sizes 2048 --runs 3
 
 echo "== The virtual performer: speech to visemes to face, motion capture to the whole character"
 "$bin/performer" visemes --lang yue --text "你好" --fps 30 -o "$work/weights.csv" --wav "$work/hello.wav"

@@ -17,6 +17,7 @@ PACKAGES=(
   libgtest-dev                  # tests
   clang libclang-rt-14-dev      # libFuzzer for the reader fuzzers (scripts/fuzz.sh)
   libopenjp2-tools grokj2k-tools  # reference decoders the codec's output is checked against
+  openjph-tools                 # ojph_compress, the HTJ2K reference in bench/speed (and its smoke test)
   python3 python3-matplotlib    # bench/table41, bench/psnr and Figure 4.13
 )
 export DEBIAN_FRONTEND=noninteractive
