@@ -845,3 +845,55 @@ TEST(T1Golden, EveryCodewordLengthAndDistortionAsRecorded) {
   EXPECT_EQ(blocks, 8190u);
   EXPECT_EQ(dg.h, 0x782c1de8dce204c0ull) << std::hex << "digest 0x" << dg.h;
 }
+
+// ---------------------------------------------------------------------------------------------
+// Blocks coded in place (IntegerBlock, FloatBlock) give exactly what the span entry point gives for
+// the same indices (and, for floats, the indices and fractions dead_zone.h's quantize() makes).
+
+#include "codec/t1/dead_zone.h"
+
+TEST(T1InPlace, SameCodewordsAsFromCopiedIndices) {
+  std::mt19937 rng(515);
+  std::normal_distribution<float> coefficient(0.0f, 40.0f);
+  const Size sizes[] = {{64, 64}, {1, 1}, {3, 5}, {13, 17}, {32, 8}, {4, 64}};
+  for (BlockStyle st : {BlockStyle{}, BlockStyle::from_spcod(0x3F), BlockStyle::from_spcod(0x19)})
+    for (Size s : sizes)
+      for (Orientation o : kOrientations) {
+        const int stride = s.w + 7;  // the block sits inside a wider plane, one row of margin above
+        std::vector<float> plane(static_cast<std::size_t>(stride) * static_cast<std::size_t>(s.h + 1));
+        for (float& v : plane) v = coefficient(rng) * (std::uniform_int_distribution<int>(0, 3)(rng) == 0 ? 8.0f : 1.0f);
+        const float inverse_step = 1.0f / 0.37f;
+        const float* origin = plane.data() + stride + 3;
+        std::vector<std::int32_t> indices;
+        std::vector<std::uint8_t> fractions;
+        std::vector<std::int32_t> integer_plane(plane.size());
+        for (int y = 0; y < s.h; ++y)
+          for (int x = 0; x < s.w; ++x) {
+            std::uint8_t f = 0;
+            indices.push_back(codec::t1::quantize(origin[y * stride + x], inverse_step, f));
+            fractions.push_back(f);
+            integer_plane[static_cast<std::size_t>((y + 1) * stride + 3 + x)] = indices.back();
+          }
+        SCOPED_TRACE(describe(s.w, s.h, o, Dist::Dense, st));
+        const EncodedBlock copied = codec::t1::encode_block(indices, s.w, s.h, o, 31, st, fractions);
+        const EncodedBlock in_place =
+            codec::t1::encode_block(codec::t1::FloatBlock{origin, stride, s.w, s.h, inverse_step}, o, 31, st);
+        Digest a, b;
+        digest_block(a, copied);
+        digest_block(b, in_place);
+        EXPECT_EQ(a.h, b.h);
+        EXPECT_EQ(in_place.bit_planes, 31 - in_place.missing_msbs);
+        const EncodedBlock exact = codec::t1::encode_block(indices, s.w, s.h, o, 31, st);
+        const EncodedBlock exact_in_place = codec::t1::encode_block(
+            codec::t1::IntegerBlock{integer_plane.data() + stride + 3, stride, s.w, s.h}, o, 31, st);
+        Digest c, d;
+        digest_block(c, exact);
+        digest_block(d, exact_in_place);
+        EXPECT_EQ(c.h, d.h);
+      }
+  EXPECT_THROW(codec::t1::encode_block(codec::t1::IntegerBlock{nullptr, 4, 4, 4}, Orientation::LL, 8, {}),
+               std::invalid_argument);
+  const std::vector<std::int32_t> row(4, 1);
+  EXPECT_THROW(codec::t1::encode_block(codec::t1::IntegerBlock{row.data(), 2, 4, 1}, Orientation::LL, 8, {}),
+               std::invalid_argument);  // rows narrower than the block
+}

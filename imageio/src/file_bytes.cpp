@@ -5,7 +5,10 @@
 #include <cstring>
 #include <memory>
 
+#include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "imageio/error.h"
 
@@ -33,6 +36,31 @@ std::vector<std::uint8_t> read_whole_file(const std::string& path) {
   }
   if (std::ferror(file.get())) throw IoError(path, std::string("read error: ") + std::strerror(errno));
   return bytes;
+}
+
+FileBytes::FileBytes(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd >= 0) {
+    struct stat info {};
+    if (::fstat(fd, &info) == 0 && S_ISREG(info.st_mode) && info.st_size > 0) {
+      const auto size = static_cast<std::size_t>(info.st_size);
+      void* map = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+      if (map != MAP_FAILED) {
+        map_ = map;
+        mapped_size_ = size;
+        bytes_ = std::span(static_cast<const std::uint8_t*>(map), size);
+      }
+    }
+    ::close(fd);
+  }
+  if (map_ == nullptr) {
+    copy_ = read_whole_file(path);  // names the file in any error
+    bytes_ = copy_;
+  }
+}
+
+FileBytes::~FileBytes() {
+  if (map_ != nullptr) ::munmap(map_, mapped_size_);
 }
 
 void write_whole_file(const std::string& path, const std::string& file_name, std::span<const std::uint8_t> bytes) {

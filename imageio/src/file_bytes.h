@@ -12,6 +12,25 @@ namespace imageio::detail {
 
 std::vector<std::uint8_t> read_whole_file(const std::string& path);
 
+// A whole file's bytes, read-only: mapped from the page cache for a regular file (no copy, no fresh
+// memory to fault in), read into memory otherwise (pipes, devices, or if mapping fails). A file
+// truncated by another process while it is mapped would fault (SIGBUS); the readers take no
+// more care of that race than any mmap-based reader does.
+class FileBytes {
+ public:
+  explicit FileBytes(const std::string& path);
+  ~FileBytes();
+  FileBytes(const FileBytes&) = delete;
+  FileBytes& operator=(const FileBytes&) = delete;
+  std::span<const std::uint8_t> bytes() const { return bytes_; }
+
+ private:
+  void* map_ = nullptr;
+  std::size_t mapped_size_ = 0;
+  std::vector<std::uint8_t> copy_;
+  std::span<const std::uint8_t> bytes_;
+};
+
 // Writes `bytes` to `file_name` (typically the temporary of
 // write_atomically); messages name `path`, the file the caller asked for.
 void write_whole_file(const std::string& path, const std::string& file_name, std::span<const std::uint8_t> bytes);

@@ -30,13 +30,13 @@ std::vector<std::uint8_t> encode_pnm(const Image& image) {
 }  // namespace
 
 Image read_pnm(const std::string& path) {
-  const std::vector<std::uint8_t> bytes = detail::read_whole_file(path);
-  return parse_pnm(bytes, path);
+  const detail::FileBytes file(path);
+  return parse_pnm(file.bytes(), path);
 }
 
 PlanarImage read_pnm_planar(const std::string& path) {
-  const std::vector<std::uint8_t> bytes = detail::read_whole_file(path);
-  return parse_pnm_planar(bytes, path);
+  const detail::FileBytes file(path);
+  return parse_pnm_planar(file.bytes(), path);
 }
 
 void write_pnm(const std::string& path, const Image& image) {

@@ -320,8 +320,7 @@ std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& p
           const std::size_t b = starved[k].second;
           for (const BlockJob& job : tile.jobs)
             if (job.block_index == b) {
-              const int coded_guard = tile.block_magnitude_bitplanes[b] - job.exponent + 1;
-              t1::EncodedBlock eb = code_block(tile, job, params, coded_guard);
+              t1::EncodedBlock eb = code_block(tile, job, params, tile.block_magnitude_bitplanes[b]);
               eb.missing_msbs = tile.blocks[b].missing_msbs;  // unchanged: the same bit-planes
               tile.blocks[b] = std::move(eb);
               break;

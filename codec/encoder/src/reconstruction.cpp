@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "codec/encoder/quantization.h"
 #include "codec/t1/reconstruction.h"
 
 namespace codec {
@@ -42,9 +43,12 @@ double rebuilt_squared_error(const SourceImage& image, const CodingPlan& plan, c
               const std::size_t y0 = static_cast<std::size_t>(band.layout.y + (cb.rect.y0 - band.rect.y0));
               indices.resize(static_cast<std::size_t>(bw) * static_cast<std::size_t>(bh));
               values.resize(indices.size());
+              const auto inverse_step = static_cast<float>(1.0 / q.steps[static_cast<std::size_t>(first_band + pb.band)]);
               for (int y = 0; y < bh; ++y)
-                std::copy_n(coded.quantized[c].begin() + static_cast<std::ptrdiff_t>((y0 + static_cast<std::size_t>(y)) * w + x0), bw,
-                            indices.begin() + static_cast<std::ptrdiff_t>(y) * bw);
+                for (int x = 0; x < bw; ++x)
+                  indices[static_cast<std::size_t>(y) * static_cast<std::size_t>(bw) + static_cast<std::size_t>(x)] =
+                      quantize(coded.coefficients[c][(y0 + static_cast<std::size_t>(y)) * w + x0 + static_cast<std::size_t>(x)],
+                               inverse_step);
               t1::reconstruct(indices, bw, bh, to_t1(band.orientation), coded.block_magnitude_bitplanes[cb.index],
                               params.block_style, passes[t][cb.index][static_cast<std::size_t>(layer)], values);
               for (int y = 0; y < bh; ++y)

@@ -44,7 +44,6 @@ std::vector<BandOrientation> qcd_order(int levels) {
   return out;
 }
 
-int bits_for(std::int64_t magnitude) { return magnitude == 0 ? 0 : 64 - std::countl_zero(static_cast<std::uint64_t>(magnitude)); }
 
 }  // namespace
 
@@ -236,68 +235,27 @@ void transform_planes(const Tile& tile, TilePlanes& planes, bool lossless, dwt::
   }
 }
 
-// Stage 3 (lossy): dead-zone quantisation of every band into integer indices and the fractions
-// tier-1 measures distortion with, by row chunks; each band's largest magnitude comes back OR-ed
-// (same highest bit) for the guard-bit check.
-void quantize_planes(const Tile& tile, const CodingPlan& plan, TilePlanes& planes, CodedTile& coded,
-                     dwt_cpu::ThreadPool& pool) {
-  const std::size_t nc = tile.components.size();
-  coded.quantized.resize(nc);
-  coded.fractions.resize(nc);
-  for (std::size_t c = 0; c < nc; ++c) {
-    const TileComponent& tc = tile.components[c];
-    const auto w = static_cast<std::size_t>(tc.rect.width());
-    coded.quantized[c].resize(planes.floats[c].size());
-    coded.fractions[c].resize(planes.floats[c].size());
-    const ComponentQuantization& q = plan.quantization[c];
-    int band_index = 0;
-    for (const Resolution& res : tc.resolutions)
-      for (const Subband& b : res.bands) {
-        const auto inverse_step = static_cast<float>(1.0 / q.steps[static_cast<std::size_t>(band_index++)]);
-        const auto rows = static_cast<std::size_t>(b.layout.height);
-        pool.parallel_for((rows + kRowsPerItem - 1) / kRowsPerItem, [&](std::size_t item) {
-          // Raw pointers: the fraction stores are char-typed and may alias anything, which would
-          // make the compiler reload a vector's data pointer after each.
-          std::int32_t* const indices = coded.quantized[c].data();
-          std::uint8_t* const fractions = coded.fractions[c].data();
-          const float* const coefficients = planes.floats[c].data();
-          const auto band_width = static_cast<std::size_t>(b.layout.width);
-          for (std::size_t y = item * kRowsPerItem; y < std::min(rows, (item + 1) * kRowsPerItem); ++y) {
-            const std::size_t row = (static_cast<std::size_t>(b.layout.y) + y) * w + static_cast<std::size_t>(b.layout.x);
-            for (std::size_t x = 0; x < band_width; ++x)
-              indices[row + x] = quantize(coefficients[row + x], inverse_step, fractions[row + x]);
-          }
-        });
-      }
-    std::vector<float>().swap(planes.floats[c]);  // the floats are done with
-  }
-}
-
-// Guard bits: each component's coefficients must fit Mb = G + exponent - 1 magnitude bits.
-void check_guard_bits(const Tile& tile, const CodingPlan& plan, const std::vector<std::vector<std::int32_t>>& planes,
-                      CodedTile& coded) {
+// After tier-1: the guard bits each component needs so that its coefficients fit
+// Mb = G + exponent - 1 magnitude bits (T.800 E-2), from the bit-planes every block uses.
+void find_guard_bits(const Tile& tile, const CodingPlan& plan, CodedTile& coded) {
   const std::size_t nc = tile.components.size();
   coded.guard_bits_needed.assign(nc, 0);
-  for (std::size_t c = 0; c < nc; ++c) {
-    const TileComponent& tc = tile.components[c];
-    const ComponentQuantization& q = plan.quantization[c];
-    int band_index = 0;
-    for (const Resolution& res : tc.resolutions)
-      for (const Subband& b : res.bands) {
-        std::uint32_t any = 0;  // OR of magnitudes: the same highest bit as their maximum
-        for (int y = 0; y < b.layout.height; ++y) {
-          const std::int32_t* row = planes[c].data() + static_cast<std::size_t>(b.layout.y + y) * static_cast<std::size_t>(tc.rect.width()) +
-                                    static_cast<std::size_t>(b.layout.x);
-          for (int x = 0; x < b.layout.width; ++x) {
-            const std::int32_t v = row[x];
-            any |= v < 0 ? 0u - static_cast<std::uint32_t>(v) : static_cast<std::uint32_t>(v);
-          }
-        }
-        const int exponent = q.exponents[static_cast<std::size_t>(band_index++)];
-        coded.guard_bits_needed[c] = std::max(coded.guard_bits_needed[c], bits_for(any) - exponent + 1);
-      }
-    if (std::max(q.guard_bits, coded.guard_bits_needed[c]) > 7)
+  for (const BlockJob& job : coded.jobs) {
+    const int planes = coded.blocks[job.block_index].bit_planes;
+    int& needed = coded.guard_bits_needed[job.component];
+    needed = std::max(needed, planes - job.exponent + 1);
+  }
+  for (std::size_t c = 0; c < nc; ++c)
+    if (std::max(plan.quantization[c].guard_bits, coded.guard_bits_needed[c]) > 7)
       throw EncodeError("component " + std::to_string(c) + "'s wavelet coefficients need more than 7 guard bits");
+  // Mb and the missing bit-planes, against the plan's guard bits (the encoder raises them to the
+  // guard bits of the whole image later; the coded bit-planes do not depend on Mb).
+  for (const BlockJob& job : coded.jobs) {
+    const int plan_guard = plan.quantization[job.component].guard_bits;
+    const int guard = std::max(plan_guard, coded.guard_bits_needed[job.component]);
+    coded.block_magnitude_bitplanes[job.block_index] = guard + job.exponent - 1;
+    t1::EncodedBlock& eb = coded.blocks[job.block_index];
+    eb.missing_msbs = plan_guard + job.exponent - 1 - eb.bit_planes;
   }
 }
 
@@ -328,6 +286,7 @@ std::vector<BlockJob> block_jobs(const Tile& tile, const CodingPlan& plan, bool 
             if (!lossless) {
               const double step = q.steps[band_index], norm = q.norms[band_index];
               job.weight = step * step * norm * norm * q.component_weight;
+              job.inverse_step = static_cast<float>(1.0 / step);
             }
             jobs.push_back(job);
           }
@@ -368,25 +327,17 @@ double predict_threshold(const std::vector<BlockJob>& jobs, const CodedTile& cod
 
 }  // namespace
 
-t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params, int guard_bits,
-                            t1::StopRule stop) {
-  const bool lossless = params.lossless;
-  const auto w = job.width, h = job.height;
-  thread_local std::vector<std::int32_t> buffer;
-  thread_local std::vector<std::uint8_t> fraction_buffer;
-  buffer.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
-  fraction_buffer.resize(lossless ? 0 : buffer.size());
-  const std::vector<std::int32_t>& plane = coded.quantized[job.component];
-  for (int y = 0; y < h; ++y) {
-    const std::size_t from = static_cast<std::size_t>((job.y0 + y) * job.plane_width + job.x0);
-    std::copy_n(plane.begin() + static_cast<std::ptrdiff_t>(from), w, buffer.begin() + static_cast<std::ptrdiff_t>(y) * w);
-    if (!lossless)
-      std::copy_n(coded.fractions[job.component].begin() + static_cast<std::ptrdiff_t>(from), w,
-                  fraction_buffer.begin() + static_cast<std::ptrdiff_t>(y) * w);
-  }
+t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params,
+                            int magnitude_bitplanes, t1::StopRule stop) {
   stop.weight = job.weight;
-  return t1::encode_block(buffer, w, h, job.orientation, guard_bits + job.exponent - 1, params.block_style,
-                          fraction_buffer, stop);
+  const std::ptrdiff_t offset = static_cast<std::ptrdiff_t>(job.y0 * job.plane_width + job.x0);
+  const auto stride = static_cast<std::ptrdiff_t>(job.plane_width);
+  if (params.lossless)
+    return t1::encode_block(t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height},
+                            job.orientation, magnitude_bitplanes, params.block_style, stop);
+  return t1::encode_block(
+      t1::FloatBlock{coded.coefficients[job.component].data() + offset, stride, job.width, job.height, job.inverse_step},
+      job.orientation, magnitude_bitplanes, params.block_style, stop);
 }
 
 CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params, int tile_index,
@@ -401,17 +352,12 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
   TilePlanes planes = load_tile_planes(image, plan, tile, lossless, pool);
   times.level_shift += ms_since(clock);
   transform_planes(tile, planes, lossless, dwt, reversible_dwt, times);
-  clock = Clock::now();
-  if (lossless)
-    coded.quantized = std::move(planes.integers);
-  else
-    quantize_planes(tile, plan, planes, coded, pool);
-  check_guard_bits(tile, plan, coded.quantized, coded);
-  times.quantization += ms_since(clock);
+  coded.quantized = std::move(planes.integers);
+  coded.coefficients = std::move(planes.floats);
   clock = Clock::now();
 
-  // Tier-1 on every code-block, in parallel. Mb is computed with the plan's guard bits; the caller
-  // raises missing_msbs if some tile needed more (the coded bit-planes do not depend on Mb).
+  // Tier-1 on every code-block, in parallel, quantising lossy blocks as they are loaded. Blocks are
+  // coded with Mb = 31, the most there can be; find_guard_bits then sets Mb and missing_msbs.
   coded.jobs = block_jobs(tile, plan, lossless);
   coded.blocks.resize(tile.code_blocks);
   coded.block_magnitude_bitplanes.assign(tile.code_blocks, 0);
@@ -421,12 +367,7 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
   auto run = [&](const std::vector<std::size_t>& which, t1::StopRule stop) {
     pool.parallel_for(which.size(), [&](std::size_t k) {
       const BlockJob& job = coded.jobs[which[k]];
-      const int plan_guard = plan.quantization[job.component].guard_bits;
-      const int guard = std::max(plan_guard, coded.guard_bits_needed[job.component]);
-      t1::EncodedBlock eb = code_block(coded, job, params, guard, stop);
-      eb.missing_msbs -= guard - plan_guard;  // expressed against the plan's guard bits for now
-      coded.block_magnitude_bitplanes[job.block_index] = guard + job.exponent - 1;
-      coded.blocks[job.block_index] = std::move(eb);
+      coded.blocks[job.block_index] = code_block(coded, job, params, 31, stop);
       if (params.progress) params.progress(progress_base + finished.fetch_add(1) + 1, progress_total);
     });
   };
@@ -444,6 +385,7 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
     coded.stop_threshold = predict_threshold(coded.jobs, coded, sample, tier1_budget) / kStopSafety;
     run(rest, t1::StopRule{coded.stop_threshold, 1});
   }
+  find_guard_bits(tile, plan, coded);
   times.tier1 += ms_since(clock);
   return coded;
 }

@@ -16,6 +16,17 @@ namespace {
 
 constexpr int kQuietPlanesToStop = 2;
 
+void validate_shape(const void* origin, std::ptrdiff_t stride, int width, int height, int magnitude_bitplanes) {
+  if (width < 1 || height < 1)
+    throw std::invalid_argument("code-block must be at least 1x1, got " + std::to_string(width) + "x" +
+                                std::to_string(height));
+  if (origin == nullptr || stride < width)
+    throw std::invalid_argument("code-block rows " + std::to_string(stride) + " apart are narrower than its width " +
+                                std::to_string(width));
+  if (magnitude_bitplanes < 0 || magnitude_bitplanes > 31)
+    throw std::invalid_argument("magnitude bit-planes must be 0..31, got " + std::to_string(magnitude_bitplanes));
+}
+
 void validate(std::span<const std::int32_t> coefficients, int width, int height, int magnitude_bitplanes) {
   if (width < 1 || height < 1)
     throw std::invalid_argument("code-block must be at least 1x1, got " + std::to_string(width) + "x" +
@@ -109,16 +120,9 @@ double code_pass(int pass, int plane, bool raw, const BlockView& v, const ZeroCo
   return gain;
 }
 
-}  // namespace
-
-EncodedBlock encode_block(std::span<const std::int32_t> coefficients, int width, int height, Orientation o,
-                          int magnitude_bitplanes, BlockStyle style, std::span<const std::uint8_t> fractions,
-                          StopRule stop) {
-  validate(coefficients, width, height, magnitude_bitplanes);
-  if (!fractions.empty() && fractions.size() != coefficients.size())
-    throw std::invalid_argument("code-block given " + std::to_string(fractions.size()) + " fractions for " +
-                                std::to_string(coefficients.size()) + " coefficients");
-  CoefficientState state(coefficients, width, height, fractions);
+// The coder proper, on a loaded block.
+EncodedBlock encode_state(CoefficientState& state, int width, int height, Orientation o, int magnitude_bitplanes,
+                          BlockStyle style, StopRule stop) {
   const int planes = state.bit_planes();
   if (planes > magnitude_bitplanes)
     throw std::invalid_argument("a coefficient magnitude needs " + std::to_string(planes) + " bit-planes, Mb is " +
@@ -127,6 +131,7 @@ EncodedBlock encode_block(std::span<const std::int32_t> coefficients, int width,
   EncodedBlock out;
   out.energy = state.energy();
   out.missing_msbs = magnitude_bitplanes - planes;
+  out.bit_planes = planes;
   const int count = pass_count(planes);
   out.passes.resize(static_cast<std::size_t>(count));
   if (count == 0) return out;
@@ -168,6 +173,33 @@ EncodedBlock encode_block(std::span<const std::int32_t> coefficients, int width,
     }
   }
   return out;
+}
+
+}  // namespace
+
+EncodedBlock encode_block(std::span<const std::int32_t> coefficients, int width, int height, Orientation o,
+                          int magnitude_bitplanes, BlockStyle style, std::span<const std::uint8_t> fractions,
+                          StopRule stop) {
+  validate(coefficients, width, height, magnitude_bitplanes);
+  if (!fractions.empty() && fractions.size() != coefficients.size())
+    throw std::invalid_argument("code-block given " + std::to_string(fractions.size()) + " fractions for " +
+                                std::to_string(coefficients.size()) + " coefficients");
+  CoefficientState state(coefficients, width, height, fractions);
+  return encode_state(state, width, height, o, magnitude_bitplanes, style, stop);
+}
+
+EncodedBlock encode_block(const IntegerBlock& block, Orientation o, int magnitude_bitplanes, BlockStyle style,
+                          StopRule stop) {
+  validate_shape(block.origin, block.stride, block.width, block.height, magnitude_bitplanes);
+  CoefficientState state(block);
+  return encode_state(state, block.width, block.height, o, magnitude_bitplanes, style, stop);
+}
+
+EncodedBlock encode_block(const FloatBlock& block, Orientation o, int magnitude_bitplanes, BlockStyle style,
+                          StopRule stop) {
+  validate_shape(block.origin, block.stride, block.width, block.height, magnitude_bitplanes);
+  CoefficientState state(block);
+  return encode_state(state, block.width, block.height, o, magnitude_bitplanes, style, stop);
 }
 
 }  // namespace codec::t1

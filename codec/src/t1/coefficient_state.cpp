@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 
+#include "codec/t1/dead_zone.h"
 #include "neighbourhood.h"
 
 namespace codec::t1 {
@@ -12,46 +13,74 @@ namespace {
 constexpr int kFractionBits = 8;  // as given: 1/256ths
 }  // namespace
 
-CoefficientState::CoefficientState(std::span<const std::int32_t> coefficients, int width, int height,
-                                   std::span<const std::uint8_t> fractions)
+CoefficientState::CoefficientState(int width, int height)
     : width_(width),
       height_(height),
       stride_(width + 2),
       flags_(static_cast<std::size_t>(stride_ * (height + 2)), 0),
-      magnitude_(flags_.size(), 0) {
+      magnitude_(flags_.size(), 0) {}
+
+template <class Sample>
+void CoefficientState::load(Sample&& sample, bool with_fractions) {
+  // The fractions wait in fine_ until the bit-planes, and so the fixed point, are known.
+  if (with_fractions) fine_.assign(magnitude_.size(), 0);
   std::uint32_t any_bits = 0;
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const std::int32_t c = coefficients[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                                          static_cast<std::size_t>(x)];
+  for (int y = 0; y < height_; ++y) {
+    const auto row = static_cast<std::size_t>((y + 1) * stride_ + 1);
+    for (int x = 0; x < width_; ++x) {
+      std::uint8_t fraction = 0;
+      const std::int32_t c = sample(x, y, fraction);
       // Negate in unsigned arithmetic: -INT32_MIN would overflow (the caller's Mb check rejects it).
       const std::uint32_t m = c < 0 ? 0u - static_cast<std::uint32_t>(c) : static_cast<std::uint32_t>(c);
-      const auto i = static_cast<std::size_t>((y + 1) * stride_ + x + 1);
+      const std::size_t i = row + static_cast<std::size_t>(x);
       magnitude_[i] = m;
       flags_[i] = c < 0 ? std::uint16_t{kNeg} : std::uint16_t{0};
+      if (with_fractions) fine_[i] = fraction;
       any_bits |= m;
     }
+  }
   // The OR of all magnitudes has the same highest set bit as their maximum, and is cheaper.
   bit_planes_ = static_cast<int>(std::bit_width(any_bits));
 
-  if (fractions.empty()) {
+  if (!with_fractions) {
     for (const std::uint32_t m : magnitude_) energy_ += static_cast<double>(m) * static_cast<double>(m);
     return;
   }
   // As many fraction bits as keep the fixed-point magnitude below 2^31, the range the distortion
   // arithmetic is proven for (distortion.h); all 8 unless the block uses more than 23 planes.
   fine_bits_ = std::clamp(31 - bit_planes_, 0, kFractionBits);
-  fine_.assign(magnitude_.size(), 0);
   const double unit = std::ldexp(1.0, -fine_bits_);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const auto i = static_cast<std::size_t>((y + 1) * stride_ + x + 1);
-      const std::uint32_t f = fractions[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                                        static_cast<std::size_t>(x)] >> (kFractionBits - fine_bits_);
-      fine_[i] = magnitude_[i] << fine_bits_ | f;
+  for (int y = 0; y < height_; ++y) {
+    const auto row = static_cast<std::size_t>((y + 1) * stride_ + 1);
+    for (int x = 0; x < width_; ++x) {
+      const std::size_t i = row + static_cast<std::size_t>(x);
+      fine_[i] = magnitude_[i] << fine_bits_ | fine_[i] >> (kFractionBits - fine_bits_);
       const double u = static_cast<double>(fine_[i]) * unit;
       energy_ += u * u;
     }
+  }
+}
+
+CoefficientState::CoefficientState(std::span<const std::int32_t> coefficients, int width, int height,
+                                   std::span<const std::uint8_t> fractions)
+    : CoefficientState(width, height) {
+  const auto w = static_cast<std::size_t>(width);
+  load(
+      [&](int x, int y, std::uint8_t& fraction) {
+        const std::size_t i = static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x);
+        if (!fractions.empty()) fraction = fractions[i];
+        return coefficients[i];
+      },
+      !fractions.empty());
+}
+
+CoefficientState::CoefficientState(const IntegerBlock& block) : CoefficientState(block.width, block.height) {
+  load([&](int x, int y, std::uint8_t&) { return block.origin[y * block.stride + x]; }, false);
+}
+
+CoefficientState::CoefficientState(const FloatBlock& block) : CoefficientState(block.width, block.height) {
+  load([&](int x, int y, std::uint8_t& fraction) { return quantize(block.origin[y * block.stride + x], block.inverse_step, fraction); },
+       true);
 }
 
 BlockView CoefficientState::view(bool causal) {

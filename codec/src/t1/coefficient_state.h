@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "block_view.h"
+#include "codec/t1/block_encoder.h"
 
 namespace codec::t1 {
 
@@ -16,6 +17,9 @@ class CoefficientState {
   // |c| / step below the index, in 1/256ths (see encode_block).
   CoefficientState(std::span<const std::int32_t> coefficients, int width, int height,
                    std::span<const std::uint8_t> fractions = {});
+  // The same from a block in its plane: indices as they are, or floats quantised on the way in.
+  explicit CoefficientState(const IntegerBlock& block);
+  explicit CoefficientState(const FloatBlock& block);
 
   // Magnitude bit-planes in use: the position of the highest set bit of any magnitude, plus one.
   int bit_planes() const { return bit_planes_; }
@@ -24,6 +28,12 @@ class CoefficientState {
   BlockView view(bool causal);
 
  private:
+  CoefficientState(int width, int height);
+  // Fills magnitudes and signs from `sample(x, y, fraction)` (returns the signed index, stores its
+  // fraction when `with_fractions`), then the fixed-point magnitudes and the energy.
+  template <class Sample>
+  void load(Sample&& sample, bool with_fractions);
+
   int width_;
   int height_;
   std::ptrdiff_t stride_;

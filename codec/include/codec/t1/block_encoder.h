@@ -36,6 +36,7 @@ struct EncodedBlock {
   // Squared error with no pass decoded (the coefficients' energy), in the passes' units.
   double energy = 0.0;
   int missing_msbs = 0;  // zero bit-planes for the packet header: Mb minus the bit-planes coded
+  int bit_planes = 0;    // magnitude bit-planes the coefficients use (the highest set bit, plus one)
   std::vector<PassInfo> passes;
   // Whether a StopRule ended the coding before the last pass the coefficients have (the block's
   // bit-planes would give 3 * planes - 2).
@@ -66,6 +67,31 @@ struct StopRule {
 // Throws std::invalid_argument for inconsistent arguments.
 EncodedBlock encode_block(std::span<const std::int32_t> coefficients, int width, int height, Orientation o,
                           int magnitude_bitplanes, BlockStyle style, std::span<const std::uint8_t> fractions = {},
+                          StopRule stop = {});
+
+// A code-block still inside its subband's plane: `origin` is its first coefficient, rows lie
+// `stride` elements apart. Integer: quantisation indices (or reversible coefficients) as they are.
+struct IntegerBlock {
+  const std::int32_t* origin = nullptr;
+  std::ptrdiff_t stride = 0;
+  int width = 0, height = 0;
+};
+
+// Float wavelet coefficients, quantised as they are loaded with 1 / step (dead_zone.h), their
+// fractions kept for the distortion figures: the same codeword and figures as quantising the plane
+// first and calling encode_block with the indices and fractions, without those planes.
+struct FloatBlock {
+  const float* origin = nullptr;
+  std::ptrdiff_t stride = 0;
+  int width = 0, height = 0;
+  float inverse_step = 1;
+};
+
+// encode_block on a block in place. Mb may be 31 when the caller learns the bit-planes from the
+// result (EncodedBlock::bit_planes) and sets missing_msbs itself.
+EncodedBlock encode_block(const IntegerBlock& block, Orientation o, int magnitude_bitplanes, BlockStyle style,
+                          StopRule stop = {});
+EncodedBlock encode_block(const FloatBlock& block, Orientation o, int magnitude_bitplanes, BlockStyle style,
                           StopRule stop = {});
 
 }  // namespace codec::t1

@@ -36,6 +36,7 @@ struct BlockJob {
   std::int64_t plane_width = 0;
   int exponent = 0;             // the band's epsilon_b
   double weight = 1;            // image-domain squared error per unit of tier-1 distortion (lossy)
+  float inverse_step = 1;       // lossy: 1 / the band's quantisation step
 };
 
 // Pass skipping (code_tile): one block in kSampleStride is coded in full to predict the final
@@ -51,10 +52,11 @@ struct CodedTile {
   // Image-domain squared error per unit of tier-1 distortion, per block (rate control).
   std::vector<double> block_weights;
   std::vector<int> block_magnitude_bitplanes;  // the Mb each block was coded with
-  // Lossy: the quantisation indices of each tile-component in the Mallat layout, kept so the encoder
-  // can rebuild what a decoder sees and measure true error (PSNR targets).
+  // Each tile-component's wavelet coefficients in the Mallat layout, kept so that blocks can be
+  // coded again (pass skipping) and the encoder can rebuild what a decoder sees (PSNR targets):
+  // reversible integers (lossless), or floats that tier-1 quantises as it loads each block (lossy).
   std::vector<std::vector<std::int32_t>> quantized;
-  std::vector<std::vector<std::uint8_t>> fractions;  // lossy: what the indices drop (quantize())
+  std::vector<std::vector<float>> coefficients;
   std::vector<BlockJob> jobs;                        // every block, for recoding
   double stop_threshold = 0;                         // the StopRule tier-1 ran with; 0: every pass
   std::vector<int> guard_bits_needed;    // per component: the fewest guard bits its coefficients fit in
@@ -81,9 +83,9 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
                     dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool, StageTimes& times,
                     double tier1_budget = 0, std::size_t progress_base = 0, std::size_t progress_total = 0);
 
-// Tier-1 of one block of a coded tile, from its kept indices, with `guard_bits` for Mb.
-t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params, int guard_bits,
-                            t1::StopRule stop = {});
+// Tier-1 of one block of a coded tile, from its kept coefficients.
+t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params,
+                            int magnitude_bitplanes, t1::StopRule stop = {});
 
 // Code-blocks of the whole image, for progress reports.
 std::size_t count_code_blocks(const CodingPlan& plan);
