@@ -161,7 +161,7 @@ void print_timing(const std::string& mode, const codec::EncodeReport& r, double 
   const std::pair<const char*, double> stages[] = {
       {"input read", read_ms},        {"setup", t.setup},                   {"GL context creation", t.gl_context}, {"shader compilation", t.shader_compile},
       {"level shift + MCT", t.level_shift}, {"upload", t.upload},           {"DWT compute", t.dwt},
-      {"download", t.download},      {"quantization", t.quantization},     {"tier-1", t.tier1},
+      {"download", t.download},      {"quantization + tier-1", t.tier1},
       {"rate control", t.rate_control}, {"tier-2", t.tier2},             {"output", output_ms}};
   const double sum = t.total() + read_ms + output_ms;
   if (mode == "json") {

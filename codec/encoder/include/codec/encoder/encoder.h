@@ -20,12 +20,11 @@ struct StageTimes {
   double upload = 0;           // planes to the GPU
   double dwt = 0;              // the transform itself
   double download = 0;         // planes back from the GPU
-  double quantization = 0;
-  double tier1 = 0;
+  double tier1 = 0;            // tier-1, which quantises lossy code-blocks as it loads them
   double rate_control = 0;     // hulls, allocation, and the trial assemblies that size the file
   double tier2 = 0;            // the final packets and codestream
   double total() const {
-    return setup + gl_context + shader_compile + level_shift + upload + dwt + download + quantization + tier1 + rate_control + tier2;
+    return setup + gl_context + shader_compile + level_shift + upload + dwt + download + tier1 + rate_control + tier2;
   }
 };
 
