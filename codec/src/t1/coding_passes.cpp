@@ -70,7 +70,7 @@ double refinement_pass_impl(const BlockView v, int plane, Symbols s) {
     if ((f & (kSig | kVisited)) != kSig) return;
     s.decision(bit_at(v.magnitude[i], plane), refinement_context(f));
     f |= kRefined;
-    gain.add(d.refinement_gain(v.fine[i]));
+    gain.add_units(d.refinement_units(v.fine[i]));
   });
   return gain.value();
 }

@@ -21,7 +21,8 @@ namespace codec::t1 {
 class PlaneDistortion {
  public:
   explicit PlaneDistortion(int plane)
-      : low_mask_((std::uint32_t{1} << plane) - 1),
+      : plane_(plane),
+        low_mask_((std::uint32_t{1} << plane) - 1),
         low_half_(plane > 0 ? std::uint32_t{1} << (plane - 1) : 0),
         high_mask_((std::uint32_t{2} << plane) - 1),
         high_half_(std::uint32_t{1} << plane) {}
@@ -38,12 +39,24 @@ class PlaneDistortion {
     return square(residual(m, high_mask_, high_half_)) - square(residual(m, low_mask_, low_half_));
   }
 
+  // refinement_gain in DistortionSum's unit 2^(p-1) (1 at p = 0), without a multiplication: with
+  // t = m mod 2^p and h = 2^(p-1) the residual goes from t - h to t (this plane's bit set) or to
+  // t - 2h (clear), so the gain is h (2t - h) or h (3h - 2t). At p = 0 the magnitude becomes exact:
+  // the error 1 of an even magnitude goes, an odd one had none.
+  std::int64_t refinement_units(std::uint32_t m) const {
+    const bool bit = (m >> plane_) & 1u;
+    if (plane_ == 0) return bit ? 0 : 1;
+    const auto t = static_cast<std::int64_t>(m & low_mask_), h = static_cast<std::int64_t>(low_half_);
+    return bit ? 2 * t - h : 3 * h - 2 * t;
+  }
+
  private:
   static std::int64_t residual(std::uint32_t m, std::uint32_t mask, std::uint32_t half) {
     return static_cast<std::int64_t>(m & mask) - half;
   }
   static std::int64_t square(std::int64_t x) { return x * x; }
 
+  int plane_;
   std::uint32_t low_mask_, low_half_;    // planes below this one
   std::uint32_t high_mask_, high_half_;  // this plane and those below
 };
@@ -60,6 +73,7 @@ class DistortionSum {
   DistortionSum(int plane, int fraction_bits)
       : unit_log2_(plane > 0 ? plane - 1 : 0), scale_log2_(unit_log2_ - 2 * fraction_bits) {}
   void add(std::int64_t gain) { units_ += gain >> unit_log2_; }  // exact: see above
+  void add_units(std::int64_t units) { units_ += units; }
   double value() const { return std::ldexp(static_cast<double>(units_), scale_log2_); }
 
  private:
