@@ -376,7 +376,7 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
   if (tier1_budget <= 0 || coded.jobs.size() < 64) {
     run(all, {});
   } else {
-    // Code only what the budget keeps: a sample of one block in eight in full, the threshold
+    // Code only what the budget keeps: a sample of one block in kSampleStride in full, the threshold
     // it predicts, then every other block until its bit-planes fall well below that threshold.
     // The encoder recodes in full any block the final allocation cuts near where it stopped.
     std::vector<std::size_t> sample, rest;

@@ -40,10 +40,12 @@ struct BlockJob {
 };
 
 // Pass skipping (code_tile): one block in kSampleStride is coded in full to predict the final
-// slope threshold; the others stop once a bit-plane buys less than that threshold / kStopSafety.
-// 16 is about two bit-planes of margin: a plane's slope falls about fourfold from one to the next.
-inline constexpr std::size_t kSampleStride = 8;
-inline constexpr double kStopSafety = 8;
+// slope threshold; the others stop once two bit-planes in a row each buy less than that
+// threshold / kStopSafety. 4 is about one bit-plane of margin (a plane's slope falls about fourfold
+// from one to the next), on top of the second plane the stop rule waits for. Measured on the
+// 2048x2048 mosaic: stride 8 and safety 8 code 15-25 % more than this for the same files.
+inline constexpr std::size_t kSampleStride = 16;
+inline constexpr double kStopSafety = 4;
 
 // A tile after the wavelet transform and tier-1: geometry plus each code-block's codeword.
 struct CodedTile {
