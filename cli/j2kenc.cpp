@@ -289,7 +289,7 @@ int main(int argc, char** argv) {
     using Clock = std::chrono::steady_clock;
     auto since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
     const auto t0 = Clock::now();
-    const codec::SourceImage image = [&] {
+    codec::SourceImage image = [&] {
       // PNM goes straight into the encoder's planes; everything else through the generic reader.
       if (auto planar = imageio::read_planar_if_native(input)) return codec::to_source_image(std::move(*planar), input);
       const cli::QuietStderr quiet_libraries;
@@ -320,7 +320,7 @@ int main(int argc, char** argv) {
     {
       ProgressBar bar(!quiet && ::isatty(2));
       params.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
-      bytes = codec::encode(image, params, format, &report);
+      bytes = codec::encode(std::move(image), params, format, &report);
     }
     if (!quiet)
       for (const auto& notice : report.notices) std::fprintf(stderr, "j2kenc: note: %s\n", notice.c_str());

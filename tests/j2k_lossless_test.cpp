@@ -240,3 +240,28 @@ TEST(J2kLossless, RejectsImpossibleOptions) {
 }
 
 }  // namespace
+
+// encode(SourceImage&&) transforms a whole-image tile's samples in place; the file must be the one
+// the copying encode(const SourceImage&) writes, for RGB (RCT in place), grey, four components
+// (RCT on three, the fourth shifted), signed samples (no shift) and a tiled image (which copies).
+TEST(J2kLossless, InPlaceEncodeWritesTheSameFile) {
+  struct Input {
+    imageio::Image image;
+    codec::EncodeParams params;
+  };
+  codec::EncodeParams tiled = lossless();
+  tiled.tile_width = 64;
+  tiled.tile_height = 48;
+  const Input inputs[] = {{generated(203, 117, 3, 8), lossless()},
+                          {generated(64, 64, 1, 12), lossless()},
+                          {generated(90, 33, 4, 16), lossless()},
+                          {testimages::generate(testimages::Pattern::Mix, 77, 51, 3, 12, true, 3), lossless()},
+                          {generated(203, 117, 3, 8), tiled}};
+  for (const Input& in : inputs) {
+    const codec::SourceImage source = to_source(in.image);
+    const auto copied = codec::encode(source, in.params, codec::FileFormat::Codestream);
+    codec::SourceImage given_up = source;
+    const auto in_place = codec::encode(std::move(given_up), in.params, codec::FileFormat::Codestream);
+    EXPECT_EQ(copied, in_place) << in.image.width << "x" << in.image.height << "x" << in.image.channels;
+  }
+}

@@ -135,8 +135,10 @@ std::vector<std::uint8_t> tile_body(const CodedTile& coded, const EncodeParams& 
 
 }  // namespace
 
-std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& params, FileFormat format,
-                                 EncodeReport* report_out) {
+namespace {
+
+std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* consumable, const EncodeParams& params,
+                                       FileFormat format, EncodeReport* report_out) {
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); };
   EncodeReport report;
@@ -175,7 +177,7 @@ std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& p
   };
   for (int t = 0; t < count; ++t) {
     const double budget = tile_budget(build_tile(plan.grid, plan.sampling, plan.styles, t));
-    tiles.push_back(code_tile(image, plan, params, t, *dwt.backend, reversible_dwt, pool, report.times, budget, blocks_before,
+    tiles.push_back(code_tile(image, consumable, plan, params, t, *dwt.backend, reversible_dwt, pool, report.times, budget, blocks_before,
                               all_blocks));
     blocks_before += tiles.back().blocks.size();
     for (std::size_t c = 0; c < final_guard.size(); ++c)
@@ -339,6 +341,17 @@ std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& p
   report.times.tier2 = since(tier2_start);
   if (report_out) *report_out = std::move(report);
   return bytes;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& params, FileFormat format,
+                                 EncodeReport* report) {
+  return encode_image(image, nullptr, params, format, report);
+}
+
+std::vector<std::uint8_t> encode(SourceImage&& image, const EncodeParams& params, FileFormat format, EncodeReport* report) {
+  return encode_image(image, &image, params, format, report);
 }
 
 }  // namespace codec

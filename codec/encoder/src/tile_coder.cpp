@@ -139,15 +139,34 @@ struct TilePlanes {
   std::vector<std::vector<float>> floats;           // lossy
 };
 
-TilePlanes load_tile_planes(const SourceImage& image, const CodingPlan& plan, const Tile& tile, bool lossless,
-                            dwt_cpu::ThreadPool& pool) {
+// Whether a lossless tile can take the source's planes and transform them where they are: the
+// caller gave the image up, and the tile covers every component whole.
+bool can_take_source(const SourceImage* consumable, const CodingPlan& plan, const Tile& tile) {
+  if (consumable == nullptr) return false;
+  for (std::size_t c = 0; c < tile.components.size(); ++c) {
+    const Rect& r = tile.components[c].rect;
+    if (r.x0 != plan.grid.image.x0 || r.y0 != plan.grid.image.y0 || r.width() != consumable->width ||
+        r.height() != consumable->height || consumable->components[c].samples.size() != static_cast<std::size_t>(r.width() * r.height()))
+      return false;
+  }
+  return true;
+}
+
+TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan, const Tile& tile,
+                            bool lossless, dwt_cpu::ThreadPool& pool) {
   const std::size_t nc = tile.components.size();
   TilePlanes out;
   (lossless ? out.integers.resize(nc) : out.floats.resize(nc));
+  // In place: the shift and RCT read each sample before writing it, so the source rows below can
+  // be the output rows themselves.
+  const bool in_place = lossless && can_take_source(consumable, plan, tile);
   for (std::size_t c = 0; c < nc; ++c) {
     const std::size_t n = static_cast<std::size_t>(tile.components[c].rect.width()) *
                           static_cast<std::size_t>(tile.components[c].rect.height());
-    lossless ? out.integers[c].resize(n) : out.floats[c].resize(n);
+    if (in_place)
+      out.integers[c] = std::move(consumable->components[c].samples);
+    else
+      lossless ? out.integers[c].resize(n) : out.floats[c].resize(n);
   }
   const bool mct = plan.rct || plan.ict;
   const TileComponent& first = tile.components[0];
@@ -156,7 +175,8 @@ TilePlanes load_tile_planes(const SourceImage& image, const CodingPlan& plan, co
     const TileComponent& tc = tile.components[c];
     const std::size_t sy = static_cast<std::size_t>(tc.rect.y0 - plan.grid.image.y0) + y;
     const std::size_t sx = static_cast<std::size_t>(tc.rect.x0 - plan.grid.image.x0);
-    return image.components[c].samples.data() + sy * static_cast<std::size_t>(image.width) + sx;
+    const std::int32_t* samples = in_place ? out.integers[c].data() : image.components[c].samples.data();
+    return samples + sy * static_cast<std::size_t>(image.width) + sx;
   };
   auto shift_of = [&](std::size_t c) {
     const SourceComponent& src = image.components[c];
@@ -340,7 +360,8 @@ t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const E
       job.orientation, magnitude_bitplanes, params.block_style, stop);
 }
 
-CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params, int tile_index,
+CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan, const EncodeParams& params,
+                    int tile_index,
                     dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool, StageTimes& times,
                     double tier1_budget, std::size_t progress_base, std::size_t progress_total) {
   auto clock = Clock::now();
@@ -349,7 +370,7 @@ CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const Enco
   const Tile& tile = coded.tile;
   const bool lossless = params.lossless;
 
-  TilePlanes planes = load_tile_planes(image, plan, tile, lossless, pool);
+  TilePlanes planes = load_tile_planes(image, consumable, plan, tile, lossless, pool);
   times.level_shift += ms_since(clock);
   transform_planes(tile, planes, lossless, dwt, reversible_dwt, times);
   coded.quantized = std::move(planes.integers);

@@ -81,7 +81,10 @@ CodingPlan make_plan(const SourceImage& image, const EncodeParams& params);
 struct StageTimes;
 // `tier1_budget` > 0: the tile's share of the code-block bytes a byte target leaves, for pass
 // skipping; 0 codes every pass.
-CodedTile code_tile(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params, int tile_index,
+// `consumable`: the same image when the caller gave it up (encode(SourceImage&&)); a lossless tile
+// covering it whole then takes its planes instead of copying them. Null otherwise.
+CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan, const EncodeParams& params,
+                    int tile_index,
                     dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool, StageTimes& times,
                     double tier1_budget = 0, std::size_t progress_base = 0, std::size_t progress_total = 0);
 
