@@ -237,8 +237,13 @@ struct PlanarSink {
     image.height = height;
     image.channels = channels;
     image.bits_per_sample = bits;
-    image.planes.assign(std::size_t(channels), std::vector<std::int32_t>(samples / std::size_t(channels)));
-    for (auto& plane : image.planes) planes.push_back(plane.data());
+    // One by one: assign(n, prototype) would fill a prototype plane and copy it, touching one
+    // more image's worth of memory.
+    image.planes.resize(std::size_t(channels));
+    for (auto& plane : image.planes) {
+      plane.resize(samples / std::size_t(channels));
+      planes.push_back(plane.data());
+    }
   }
   void put(std::size_t pixel, int channel, unsigned value) { planes[std::size_t(channel)][pixel] = std::int32_t(value); }
 };

@@ -351,7 +351,9 @@ std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& p
 }
 
 std::vector<std::uint8_t> encode(SourceImage&& image, const EncodeParams& params, FileFormat format, EncodeReport* report) {
-  return encode_image(image, &image, params, format, report);
+  // PSNR targets compare the rebuilt image with the source to the end, so they keep it.
+  const bool needs_source = !params.layers.empty() && params.layers[0].kind == LayerTarget::Kind::Psnr;
+  return encode_image(image, needs_source ? nullptr : &image, params, format, report);
 }
 
 }  // namespace codec

@@ -6,13 +6,15 @@
 #include <cstdlib>
 #include <string>
 
+#include <sys/mman.h>
+#include <unistd.h>
+
 #include "codec/encoder/component_transform.h"
 #include "codec/encoder/encoder.h"
 #include "dwt_gpu/gpu_backend.h"
 
 #include <atomic>
 #include <chrono>
-#include <cstdlib>
 #include "codec/encoder/quantization.h"
 #include "codec/rate/hull.h"
 #include "codec/rate/selection.h"
@@ -136,7 +138,7 @@ constexpr std::size_t kRowsPerItem = 16;
 // Lossless planes are integers; lossy ones floats, ready for the 9/7.
 struct TilePlanes {
   std::vector<std::vector<std::int32_t>> integers;  // lossless
-  std::vector<std::vector<float>> floats;           // lossy
+  std::vector<FloatPlane> floats;                   // lossy
 };
 
 // Whether a lossless tile can take the source's planes and transform them where they are: the
@@ -152,6 +154,18 @@ bool can_take_source(const SourceImage* consumable, const CodingPlan& plan, cons
   return true;
 }
 
+// Gives rows [y0, y1) of a source component given up by the caller back to the system: the pages
+// wholly inside them are dropped (MADV_DONTNEED; they would read as zeros, and nothing reads them
+// again), so the image's memory shrinks as its rows are converted.
+void release_rows(SourceImage& image, std::size_t component, std::size_t y0, std::size_t y1) {
+  std::vector<std::int32_t>& samples = image.components[component].samples;
+  const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
+  const auto begin = reinterpret_cast<std::uintptr_t>(samples.data() + y0 * static_cast<std::size_t>(image.width));
+  const auto end = reinterpret_cast<std::uintptr_t>(samples.data() + y1 * static_cast<std::size_t>(image.width));
+  const std::uintptr_t first = (begin + page - 1) / page * page, last = end / page * page;
+  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_DONTNEED);
+}
+
 TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan, const Tile& tile,
                             bool lossless, dwt_cpu::ThreadPool& pool) {
   const std::size_t nc = tile.components.size();
@@ -160,6 +174,9 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
   // In place: the shift and RCT read each sample before writing it, so the source rows below can
   // be the output rows themselves.
   const bool in_place = lossless && can_take_source(consumable, plan, tile);
+  // Lossy, with a source given up: its float planes are new memory, but each chunk of source rows
+  // goes back to the system as soon as it is converted, so the two never both hold the image.
+  const bool release_source = !lossless && can_take_source(consumable, plan, tile);
   for (std::size_t c = 0; c < nc; ++c) {
     const std::size_t n = static_cast<std::size_t>(tile.components[c].rect.width()) *
                           static_cast<std::size_t>(tile.components[c].rect.height());
@@ -196,6 +213,8 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
                           out.floats[2].data() + y * w, w);
         }
       }
+      if (release_source)
+        for (std::size_t c = 0; c < 3; ++c) release_rows(*consumable, c, item * kRowsPerItem, std::min(h, (item + 1) * kRowsPerItem));
     });
   }
   for (std::size_t c = mct ? 3 : 0; c < nc; ++c) {
@@ -210,8 +229,11 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
         else
           for (std::size_t x = 0; x < cw; ++x) out.floats[c][y * cw + x] = static_cast<float>(src[x] - shift);
       }
+      if (release_source) release_rows(*consumable, c, item * kRowsPerItem, std::min(ch, (item + 1) * kRowsPerItem));
     });
   }
+  if (release_source)
+    for (SourceComponent& component : consumable->components) std::vector<std::int32_t>().swap(component.samples);
   return out;
 }
 

@@ -43,9 +43,10 @@ struct EncodeReport {
 std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& params, FileFormat format,
                                  EncodeReport* report = nullptr);
 
-// The same, for a caller that no longer needs the samples: a lossless encode whose tile covers the
-// whole image transforms them in place instead of copying them (one image's worth of memory less).
-// Afterwards the image keeps its size and components, but its samples may be gone.
+// The same, for a caller that no longer needs the samples, when one tile covers the whole image: a
+// lossless encode transforms them in place instead of copying them, a lossy one (without PSNR
+// targets) releases them row by row as it converts them to floats; either way one image's worth of
+// memory less. Afterwards the image keeps its size and components, but its samples may be gone.
 std::vector<std::uint8_t> encode(SourceImage&& image, const EncodeParams& params, FileFormat format,
                                  EncodeReport* report = nullptr);
 

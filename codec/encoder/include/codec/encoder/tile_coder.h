@@ -1,5 +1,9 @@
 #pragma once
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "codec/encoder/params.h"
@@ -25,6 +29,25 @@ struct ComponentQuantization {
   double component_weight = 1;  // image-domain squared error per unit squared error here (ICT)
   int magnitude_bitplanes(int exponent) const { return guard_bits + exponent - 1; }  // Mb, E-2
 };
+
+// An allocator whose elements start uninitialised, for planes that are written in full before they
+// are read: their pages are first touched by the stage that fills them (in parallel), with no zero
+// pass before, and while a given-up source image is released row by row the two never coexist.
+template <class T>
+struct UninitialisedAllocator : std::allocator<T> {
+  UninitialisedAllocator() = default;
+  template <class U>
+  UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+using FloatPlane = std::vector<float, UninitialisedAllocator<float>>;
 
 // One code-block as tier-1 and rate control see it: where its indices lie, its band, its weight.
 struct BlockJob {
@@ -58,7 +81,7 @@ struct CodedTile {
   // coded again (pass skipping) and the encoder can rebuild what a decoder sees (PSNR targets):
   // reversible integers (lossless), or floats that tier-1 quantises as it loads each block (lossy).
   std::vector<std::vector<std::int32_t>> quantized;
-  std::vector<std::vector<float>> coefficients;
+  std::vector<FloatPlane> coefficients;
   std::vector<BlockJob> jobs;                        // every block, for recoding
   double stop_threshold = 0;                         // the StopRule tier-1 ran with; 0: every pass
   std::vector<int> guard_bits_needed;    // per component: the fewest guard bits its coefficients fit in
