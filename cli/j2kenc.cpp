@@ -225,7 +225,7 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "worker threads (default: all hardware threads)");
   bool every_pass = false;
   app.add_flag("--code-every-pass", every_pass,
-               "with a byte target, code every pass of every block instead of stopping far below the predicted threshold");
+               "with a byte or PSNR target, code every pass of every block instead of stopping far below the predicted threshold");
   app.add_flag("-q,--quiet", quiet, "no summary line");
   std::string timing;
   app.add_flag("--timing{text}", timing, "print the time of each stage after the encode; --timing=json for JSON on stderr");

@@ -8,8 +8,10 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh build
 bin=build/bin
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+# Everything the job makes stays in out/ (pictures, figure, codestreams, speech, meshes, benchmark JSON).
+work=out
+rm -rf "$work"
+mkdir -p "$work"
 
 # The bundled image: the project's own generator, so nothing depends on downloads.
 "$bin/gentestimage" --pattern mix --size 768x512 -o "$work/mix.png"
@@ -47,7 +49,7 @@ else
 fi
 
 echo "== Encoder speed: j2kenc against OpenJPEG, Grok and OpenJPH on the 2048x2048 mosaic (bench/speed)"
-$python3 bench/speed --sizes 2048 --runs 3
+$python3 bench/speed --sizes 2048 --runs 3 --json "$work/speed.json"
 
 echo "== The virtual performer: speech to visemes to face, motion capture to the whole character"
 "$bin/performer" visemes --lang yue --text "你好" --fps 30 -o "$work/weights.csv" --wav "$work/hello.wav"
@@ -60,3 +62,6 @@ else
   echo "note: $bvh not found; skipping performer pose"
 fi
 "$bin/performer_bench"
+
+echo "== Done: what the job made is in $(cd "$work" && pwd):"
+ls "$work"

@@ -202,6 +202,39 @@ TEST(J2kLossy, PassSkippingIsNoWorseThanCodingEveryPass) {
   std::printf("pass skipping gave the full-coding file in %d of %d cases\n", identical, cases);
 }
 
+// The same for PSNR targets: the skipped encode's file is full coding's, or it meets the target
+// (decoded PSNR over RGB) in no more bytes.
+TEST(J2kLossy, PassSkippingMeetsPsnrTargetsAsCodingEveryPassDoes) {
+  int identical = 0, cases = 0;
+  for (int index : photo_indices()) {
+    const imageio::Image img = photo_or_synthetic(index);
+    const auto source = codec::to_source_image(img, "image");
+    for (double db : {32.0, 38.0}) {
+      SCOPED_TRACE("image " + std::to_string(index) + " at " + std::to_string(db) + " dB");
+      codec::EncodeParams p = lossy_at(0);
+      p.layers = {{codec::LayerTarget::Kind::Psnr, db}};
+      p.skip_passes = false;
+      const auto full = codec::encode(source, p, codec::FileFormat::Codestream);
+      p.skip_passes = true;
+      codec::EncodeReport report;
+      const auto skipped = codec::encode(source, p, codec::FileFormat::Codestream, &report);
+      ++cases;
+      if (skipped == full) {
+        ++identical;
+        continue;
+      }
+      Scratch s;
+      write_bytes(s / "skipped.j2k", skipped);
+      const double skipped_db = psnr(img, decode(s / "skipped.j2k", s / "skipped.png"), 8).back();
+      std::printf("image %d at %g dB: files differ (%zu blocks recoded): %.4f dB in %zu bytes, full coding %zu bytes\n",
+                  index, db, report.recoded_blocks, skipped_db, skipped.size(), full.size());
+      EXPECT_GE(skipped_db, db);
+      EXPECT_LE(skipped.size(), full.size());
+    }
+  }
+  std::printf("pass skipping gave the full-coding file in %d of %d cases\n", identical, cases);
+}
+
 TEST(J2kLossy, GpuDwtGivesTheCpuQuality) {
   const imageio::Image img = testimages::generate(testimages::Pattern::Mix, 256, 192, 3, 8);
   const auto source = codec::to_source_image(img, "image");

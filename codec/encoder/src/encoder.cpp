@@ -165,20 +165,33 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
   const std::size_t all_blocks = params.progress ? count_code_blocks(plan) : 0;
   report.times.setup = since(setup_start) - report.times.gl_context - report.times.shader_compile;
   std::size_t blocks_before = 0;
-  // Pass skipping needs a byte target: each tile gets its share of the last layer's bytes, less a
-  // little for the headers (the prediction only sets where blocks stop, with a wide margin).
-  const bool skipping = params.skip_passes && !params.lossless && !params.layers.empty() &&
-                        params.layers[0].kind == LayerTarget::Kind::Bytes;
-  auto tile_budget = [&](const Tile& tile) {
-    if (!skipping) return 0.0;
+  // Pass skipping needs a target to predict from: each tile gets its share of the last layer's
+  // bytes (less a little for the headers), or of the squared error its PSNR allows (less a fifth:
+  // the rate-distortion estimate runs optimistic, so the PSNR loop aims below the goal). The
+  // prediction only sets where blocks stop, with a wide margin.
+  const bool skipping = params.skip_passes && !params.lossless && !params.layers.empty();
+  int peak_bits = 0;
+  for (const SourceComponent& c : image.components) peak_bits = std::max(peak_bits, c.precision);
+  const double peak = std::ldexp(1.0, peak_bits) - 1;
+  auto tile_target = [&](const Tile& tile) {
+    Tier1Target target;
+    if (!skipping) return target;
     double tile_samples = 0;
     for (const TileComponent& tc : tile.components) tile_samples += static_cast<double>(tc.rect.width() * tc.rect.height());
-    return 0.97 * params.layers.back().value * tile_samples / std::max(1.0, samples);
+    const double share = tile_samples / std::max(1.0, samples);
+    const LayerTarget& last = params.layers.back();
+    if (last.kind == LayerTarget::Kind::Bytes) {
+      target = {Tier1Target::Kind::Bytes, 0.97 * last.value * share};
+    } else {
+      const double goal = samples * peak * peak * std::pow(10.0, -last.value / 10.0);
+      target = {Tier1Target::Kind::Distortion, 0.8 * goal * share};
+    }
+    return target;
   };
   for (int t = 0; t < count; ++t) {
-    const double budget = tile_budget(build_tile(plan.grid, plan.sampling, plan.styles, t));
-    tiles.push_back(code_tile(image, consumable, plan, params, t, *dwt.backend, reversible_dwt, pool, report.times, budget, blocks_before,
-                              all_blocks));
+    const Tier1Target target = tile_target(build_tile(plan.grid, plan.sampling, plan.styles, t));
+    tiles.push_back(code_tile(image, consumable, plan, params, t, *dwt.backend, reversible_dwt, pool, report.times, target,
+                              blocks_before, all_blocks));
     blocks_before += tiles.back().blocks.size();
     for (std::size_t c = 0; c < final_guard.size(); ++c)
       final_guard[c] = std::max(final_guard[c], tiles.back().guard_bits_needed[c]);
@@ -224,13 +237,6 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
             passes[t][b][static_cast<std::size_t>(l)] = per_layer[static_cast<std::size_t>(l)][g];
           }
     };
-    std::size_t samples = 0;
-    int peak_bits = 0;
-    for (const SourceComponent& c : image.components) {
-      samples += c.samples.size();
-      peak_bits = std::max(peak_bits, c.precision);
-    }
-    const double peak = std::ldexp(1.0, peak_bits) - 1;
     if (params.layers[0].kind == LayerTarget::Kind::Psnr) {
       // Select by estimated distortion, then rebuild the image a decoder would see, measure its
       // true error and rescale the estimate's target until the measured PSNR lands in
@@ -239,7 +245,7 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
       dwt_cpu::CpuBackend inverse_dwt(pool);
       std::vector<std::vector<int>> per_layer(static_cast<std::size_t>(layers), std::vector<int>(hulls.size(), 0));
       for (int l = 0; l < layers; ++l) {
-        const double goal = static_cast<double>(samples) * peak * peak * std::pow(10.0, -params.layers[static_cast<std::size_t>(l)].value / 10.0);
+        const double goal = samples * peak * peak * std::pow(10.0, -params.layers[static_cast<std::size_t>(l)].value / 10.0);
         const double floor_goal = goal * std::pow(10.0, -0.025);
         double aim = goal;
         std::vector<int> best;
@@ -302,36 +308,36 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
         }
       }
       apply(best);
-      // Pass skipping's check: a block that stopped early, and that the last layer now takes any
-      // pass of its last coded bit-plane from, may have been stopped too soon. Code those in full
-      // and allocate again; the rest stopped at least a whole bit-plane past the cut.
-      std::vector<std::pair<std::size_t, std::size_t>> starved;  // (tile, block)
-      for (std::size_t t = 0; t < tiles.size(); ++t)
-        for (std::size_t b = 0; b < tiles[t].blocks.size(); ++b) {
-          const t1::EncodedBlock& eb = tiles[t].blocks[b];
-          // The last coded bit-plane's first pass: its cleanup when only the top plane was coded.
-          const int coded = static_cast<int>(eb.passes.size());
-          const int last_plane_start = coded == 1 ? 0 : coded - 3;
-          if (eb.stopped_early && passes[t][b].back() > last_plane_start) starved.emplace_back(t, b);
-        }
-      if (!starved.empty() && recode_round < 2) {
-        report.recoded_blocks += starved.size();
-        const auto recode_start = Clock::now();
-        pool.parallel_for(starved.size(), [&](std::size_t k) {
-          CodedTile& tile = tiles[starved[k].first];
-          const std::size_t b = starved[k].second;
-          for (const BlockJob& job : tile.jobs)
-            if (job.block_index == b) {
-              t1::EncodedBlock eb = code_block(tile, job, params, tile.block_magnitude_bitplanes[b]);
-              eb.missing_msbs = tile.blocks[b].missing_msbs;  // unchanged: the same bit-planes
-              tile.blocks[b] = std::move(eb);
-              break;
-            }
-        });
-        recode_ms += since(recode_start);
-        report.times.tier1 += since(recode_start);
-        continue;
+    }
+    // Pass skipping's check: a block that stopped early, and that the last layer now takes any
+    // pass of its last coded bit-plane from, may have been stopped too soon. Code those in full
+    // and allocate again; the rest stopped at least a whole bit-plane past the cut.
+    std::vector<std::pair<std::size_t, std::size_t>> starved;  // (tile, block)
+    for (std::size_t t = 0; t < tiles.size(); ++t)
+      for (std::size_t b = 0; b < tiles[t].blocks.size(); ++b) {
+        const t1::EncodedBlock& eb = tiles[t].blocks[b];
+        // The last coded bit-plane's first pass: its cleanup when only the top plane was coded.
+        const int coded = static_cast<int>(eb.passes.size());
+        const int last_plane_start = coded == 1 ? 0 : coded - 3;
+        if (eb.stopped_early && passes[t][b].back() > last_plane_start) starved.emplace_back(t, b);
       }
+    if (!starved.empty() && recode_round < 2) {
+      report.recoded_blocks += starved.size();
+      const auto recode_start = Clock::now();
+      pool.parallel_for(starved.size(), [&](std::size_t k) {
+        CodedTile& tile = tiles[starved[k].first];
+        const std::size_t b = starved[k].second;
+        for (const BlockJob& job : tile.jobs)
+          if (job.block_index == b) {
+            t1::EncodedBlock eb = code_block(tile, job, params, tile.block_magnitude_bitplanes[b]);
+            eb.missing_msbs = tile.blocks[b].missing_msbs;  // unchanged: the same bit-planes
+            tile.blocks[b] = std::move(eb);
+            break;
+          }
+      });
+      recode_ms += since(recode_start);
+      report.times.tier1 += since(recode_start);
+      continue;
     }
     break;
   }

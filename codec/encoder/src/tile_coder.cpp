@@ -338,31 +338,36 @@ std::vector<BlockJob> block_jobs(const Tile& tile, const CodingPlan& plan, bool 
 }
 
 // Predicts the final slope threshold from a sample of blocks coded in full: the threshold at which
-// the sample spends its share of `budget` (its share of the tile's coefficients).
+// the sample spends its share (by coefficient count) of the tile's bytes, or leaves its share of
+// the tile's squared error.
 double predict_threshold(const std::vector<BlockJob>& jobs, const CodedTile& coded, const std::vector<std::size_t>& sample,
-                         double budget) {
-  double sample_coefficients = 0, all_coefficients = 0;
+                         const Tier1Target& target) {
+  double sample_coefficients = 0, all_coefficients = 0, sample_energy = 0;
   for (const BlockJob& j : jobs) all_coefficients += static_cast<double>(j.width) * j.height;
   std::vector<std::vector<rate::HullPoint>> hulls;
   for (std::size_t i : sample) {
     const BlockJob& j = jobs[i];
     sample_coefficients += static_cast<double>(j.width) * j.height;
     hulls.push_back(rate::convex_hull(coded.blocks[j.block_index].passes, j.weight));
+    sample_energy += coded.blocks[j.block_index].energy * j.weight;
   }
-  const double share = budget * sample_coefficients / std::max(1.0, all_coefficients);
-  auto bytes_at = [&](double threshold) {
-    double bytes = 0;
+  const double share = target.value * sample_coefficients / std::max(1.0, all_coefficients);
+  // Bytes spent, and squared error left, by the sample at a threshold.
+  auto at = [&](double threshold) {
+    double bytes = 0, kept = 0;
     for (const auto& hull : hulls) {
       const std::size_t points = rate::points_at_or_above(hull, threshold);
-      if (points > 0) bytes += static_cast<double>(hull[points - 1].bytes);
+      if (points > 0) bytes += static_cast<double>(hull[points - 1].bytes), kept += hull[points - 1].distortion;
     }
-    return bytes;
+    return std::pair{bytes, sample_energy - kept};
   };
-  // Bisect on the logarithm: slopes span many decades.
+  // Bisect on the logarithm: slopes span many decades. Both bytes and error are monotone in it.
   double lo = -60, hi = 60;  // log2 of the threshold
   for (int i = 0; i < 60; ++i) {
     const double mid = 0.5 * (lo + hi);
-    (bytes_at(std::exp2(mid)) > share ? lo : hi) = mid;
+    const auto [bytes, error] = at(std::exp2(mid));
+    const bool too_much = target.kind == Tier1Target::Kind::Bytes ? bytes > share : error < share;
+    (too_much ? lo : hi) = mid;
   }
   return std::exp2(hi);
 }
@@ -385,7 +390,7 @@ t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const E
 CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan, const EncodeParams& params,
                     int tile_index,
                     dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool, StageTimes& times,
-                    double tier1_budget, std::size_t progress_base, std::size_t progress_total) {
+                    Tier1Target target, std::size_t progress_base, std::size_t progress_total) {
   auto clock = Clock::now();
   CodedTile coded;
   coded.tile = build_tile(plan.grid, plan.sampling, plan.styles, tile_index);
@@ -416,7 +421,7 @@ CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const Cod
   };
   std::vector<std::size_t> all(coded.jobs.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-  if (tier1_budget <= 0 || coded.jobs.size() < 64) {
+  if (target.kind == Tier1Target::Kind::None || target.value <= 0 || coded.jobs.size() < 64) {
     run(all, {});
   } else {
     // Code only what the budget keeps: a sample of one block in kSampleStride in full, the threshold
@@ -425,7 +430,7 @@ CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const Cod
     std::vector<std::size_t> sample, rest;
     for (std::size_t i : all) (i % kSampleStride == 0 ? sample : rest).push_back(i);
     run(sample, {});
-    coded.stop_threshold = predict_threshold(coded.jobs, coded, sample, tier1_budget) / kStopSafety;
+    coded.stop_threshold = predict_threshold(coded.jobs, coded, sample, target) / kStopSafety;
     run(rest, t1::StopRule{coded.stop_threshold, 1});
   }
   find_guard_bits(tile, plan, coded);

@@ -43,8 +43,8 @@ struct EncodeParams {
   t1::BlockStyle block_style{};
   int guard_bits = -1;                // -1: 2 for lossless, 1 for lossy
   int threads = 0;                    // 0: all hardware threads
-  // Byte targets: tier-1 stops coding a block once its bit-planes fall far below the predicted
-  // final slope threshold (README, "Pass skipping"). false codes every pass of every block.
+  // Byte and PSNR targets: tier-1 stops coding a block once its bit-planes fall far below the
+  // predicted final slope threshold (README, "Pass skipping"). false codes every pass of every block.
   bool skip_passes = true;
   std::string comment = "Created by gpuj2k";
   // Called as code-blocks finish tier-1, from any worker thread (the callee must be thread-safe):

@@ -102,14 +102,19 @@ CodingPlan make_plan(const SourceImage& image, const EncodeParams& params);
 // DC shift, component transform, DWT (the 9/7 on `dwt`, the reversible 5/3 on `reversible_dwt`,
 // which must take integer planes), quantisation and tier-1 for one tile.
 struct StageTimes;
-// `tier1_budget` > 0: the tile's share of the code-block bytes a byte target leaves, for pass
-// skipping; 0 codes every pass.
+// What pass skipping aims at in one tile: its share of the code-block bytes a byte target leaves,
+// or of the squared error (image units) a PSNR target allows. None codes every pass.
+struct Tier1Target {
+  enum class Kind { None, Bytes, Distortion } kind = Kind::None;
+  double value = 0;
+};
+
 // `consumable`: the same image when the caller gave it up (encode(SourceImage&&)); a lossless tile
 // covering it whole then takes its planes instead of copying them. Null otherwise.
 CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan, const EncodeParams& params,
                     int tile_index,
                     dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool, StageTimes& times,
-                    double tier1_budget = 0, std::size_t progress_base = 0, std::size_t progress_total = 0);
+                    Tier1Target target = {}, std::size_t progress_base = 0, std::size_t progress_total = 0);
 
 // Tier-1 of one block of a coded tile, from its kept coefficients.
 t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params,
