@@ -257,7 +257,7 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
             for (std::size_t g = 0; g < chosen.size(); ++g) chosen[g] = std::max(chosen[g], per_layer[static_cast<std::size_t>(l - 1)][g]);
           per_layer[static_cast<std::size_t>(l)] = chosen;
           apply(per_layer);
-          const double error = rebuilt_squared_error(image, plan, params, tiles, passes, l, inverse_dwt);
+          const double error = rebuilt_squared_error(image, plan, params, tiles, passes, l, inverse_dwt, pool);
           // Keep the cheapest selection that meets the goal.
           if (error <= goal && (best_error < 0 || error > best_error)) best = chosen, best_error = error;
           if (error <= goal && error >= floor_goal) break;

@@ -7,57 +7,45 @@
 #include "codec/t1/reconstruction.h"
 
 namespace codec {
-namespace {
-
-t1::Orientation to_t1(BandOrientation o) { return static_cast<t1::Orientation>(static_cast<int>(o)); }
-
-}  // namespace
 
 double rebuilt_squared_error(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params,
                              const std::vector<CodedTile>& tiles,
                              const std::vector<std::vector<std::vector<int>>>& passes, int layer,
-                             dwt::DwtBackend& dwt) {
+                             dwt::DwtBackend& dwt, dwt_cpu::ThreadPool& pool) {
   double total = 0;
-  std::vector<std::int32_t> indices;
-  std::vector<float> values;
   for (std::size_t t = 0; t < tiles.size(); ++t) {
     const CodedTile& coded = tiles[t];
     const Tile& tile = coded.tile;
     const std::size_t nc = tile.components.size();
     std::vector<std::vector<float>> planes(nc);
+    for (std::size_t c = 0; c < nc; ++c)
+      planes[c].assign(static_cast<std::size_t>(tile.components[c].rect.width()) *
+                           static_cast<std::size_t>(tile.components[c].rect.height()),
+                       0.0f);
+    // Every block's dequantised reconstruction into its place in the Mallat layout, in parallel:
+    // blocks cover disjoint rectangles.
+    pool.parallel_for(coded.jobs.size(), [&](std::size_t k) {
+      const BlockJob& job = coded.jobs[k];
+      const auto bw = static_cast<std::size_t>(job.width), bh = static_cast<std::size_t>(job.height);
+      const auto w = static_cast<std::size_t>(job.plane_width);
+      const auto x0 = static_cast<std::size_t>(job.x0), y0 = static_cast<std::size_t>(job.y0);
+      thread_local std::vector<std::int32_t> indices;
+      thread_local std::vector<float> values;
+      indices.resize(bw * bh);
+      values.resize(indices.size());
+      const FloatPlane& coefficients = coded.coefficients[job.component];
+      for (std::size_t y = 0; y < bh; ++y)
+        for (std::size_t x = 0; x < bw; ++x)
+          indices[y * bw + x] = quantize(coefficients[(y0 + y) * w + x0 + x], job.inverse_step);
+      t1::reconstruct(indices, job.width, job.height, job.orientation, coded.block_magnitude_bitplanes[job.block_index],
+                      params.block_style, passes[t][job.block_index][static_cast<std::size_t>(layer)], values);
+      std::vector<float>& plane = planes[job.component];
+      for (std::size_t y = 0; y < bh; ++y)
+        for (std::size_t x = 0; x < bw; ++x) plane[(y0 + y) * w + x0 + x] = values[y * bw + x] * job.step;
+    });
     for (std::size_t c = 0; c < nc; ++c) {
       const TileComponent& tc = tile.components[c];
-      const auto w = static_cast<std::size_t>(tc.rect.width());
-      planes[c].assign(w * static_cast<std::size_t>(tc.rect.height()), 0.0f);
       if (tc.rect.empty()) continue;
-      const ComponentQuantization& q = plan.quantization[c];
-      for (const Resolution& res : tc.resolutions) {
-        const int first_band = res.r == 0 ? 0 : 1 + 3 * (res.r - 1);
-        for (const Precinct& p : res.precincts)
-          for (const PrecinctBand& pb : p.bands) {
-            const Subband& band = res.bands[static_cast<std::size_t>(pb.band)];
-            const auto step = static_cast<float>(q.steps[static_cast<std::size_t>(first_band + pb.band)]);
-            for (const CodeBlock& cb : pb.blocks) {
-              const int bw = static_cast<int>(cb.rect.width()), bh = static_cast<int>(cb.rect.height());
-              const std::size_t x0 = static_cast<std::size_t>(band.layout.x + (cb.rect.x0 - band.rect.x0));
-              const std::size_t y0 = static_cast<std::size_t>(band.layout.y + (cb.rect.y0 - band.rect.y0));
-              indices.resize(static_cast<std::size_t>(bw) * static_cast<std::size_t>(bh));
-              values.resize(indices.size());
-              const auto inverse_step = static_cast<float>(1.0 / q.steps[static_cast<std::size_t>(first_band + pb.band)]);
-              for (int y = 0; y < bh; ++y)
-                for (int x = 0; x < bw; ++x)
-                  indices[static_cast<std::size_t>(y) * static_cast<std::size_t>(bw) + static_cast<std::size_t>(x)] =
-                      quantize(coded.coefficients[c][(y0 + static_cast<std::size_t>(y)) * w + x0 + static_cast<std::size_t>(x)],
-                               inverse_step);
-              t1::reconstruct(indices, bw, bh, to_t1(band.orientation), coded.block_magnitude_bitplanes[cb.index],
-                              params.block_style, passes[t][cb.index][static_cast<std::size_t>(layer)], values);
-              for (int y = 0; y < bh; ++y)
-                for (int x = 0; x < bw; ++x)
-                  planes[c][(y0 + static_cast<std::size_t>(y)) * w + x0 + static_cast<std::size_t>(x)] =
-                      values[static_cast<std::size_t>(y) * static_cast<std::size_t>(bw) + static_cast<std::size_t>(x)] * step;
-            }
-          }
-      }
       dwt::DwtParams dp;
       dp.kernel = dwt::KernelId::Irreversible97;
       dp.levels = tc.levels;

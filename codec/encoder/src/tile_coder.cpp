@@ -329,6 +329,7 @@ std::vector<BlockJob> block_jobs(const Tile& tile, const CodingPlan& plan, bool 
               const double step = q.steps[band_index], norm = q.norms[band_index];
               job.weight = step * step * norm * norm * q.component_weight;
               job.inverse_step = static_cast<float>(1.0 / step);
+              job.step = static_cast<float>(step);
             }
             jobs.push_back(job);
           }

@@ -60,6 +60,7 @@ struct BlockJob {
   int exponent = 0;             // the band's epsilon_b
   double weight = 1;            // image-domain squared error per unit of tier-1 distortion (lossy)
   float inverse_step = 1;       // lossy: 1 / the band's quantisation step
+  float step = 1;               // lossy: the step itself, as dequantisation uses it
 };
 
 // Pass skipping (code_tile): one block in kSampleStride is coded in full to predict the final
