@@ -163,6 +163,21 @@ TEST(J2kLossy, PsnrTargetsLandJustAbove) {
   EXPECT_LE(top, 35.3);
 }
 
+// One encode coding every pass, one with pass skipping (and its report).
+struct BothWays {
+  std::vector<std::uint8_t> full, skipped;
+  codec::EncodeReport report;
+};
+
+BothWays encode_both_ways(const codec::SourceImage& source, codec::EncodeParams p) {
+  BothWays out;
+  p.skip_passes = false;
+  out.full = codec::encode(source, p, codec::FileFormat::Codestream);
+  p.skip_passes = true;
+  out.skipped = codec::encode(source, p, codec::FileFormat::Codestream, &out.report);
+  return out;
+}
+
 // Pass skipping (tier-1 stops far below the predicted threshold, starved blocks are recoded): on
 // every photograph and rate, the file is the one full coding gives, or, where it differs, decodes
 // to a PSNR over RGB no lower than full coding's. Three quality layers are checked too.
@@ -178,11 +193,7 @@ TEST(J2kLossy, PassSkippingIsNoWorseThanCodingEveryPass) {
       if (bpp == 3.0) p.layers = {{codec::LayerTarget::Kind::Bytes, std::floor(0.25 * pixels / 8)},
                                   {codec::LayerTarget::Kind::Bytes, std::floor(1.0 * pixels / 8)},
                                   {codec::LayerTarget::Kind::Bytes, std::floor(3.0 * pixels / 8)}};
-      p.skip_passes = false;
-      const auto full = codec::encode(source, p, codec::FileFormat::Codestream);
-      p.skip_passes = true;
-      codec::EncodeReport report;
-      const auto skipped = codec::encode(source, p, codec::FileFormat::Codestream, &report);
+      const auto [full, skipped, report] = encode_both_ways(source, p);
       ++cases;
       EXPECT_LE(static_cast<double>(skipped.size()), p.layers.back().value);
       if (skipped == full) {
@@ -213,11 +224,7 @@ TEST(J2kLossy, PassSkippingMeetsPsnrTargetsAsCodingEveryPassDoes) {
       SCOPED_TRACE("image " + std::to_string(index) + " at " + std::to_string(db) + " dB");
       codec::EncodeParams p = lossy_at(0);
       p.layers = {{codec::LayerTarget::Kind::Psnr, db}};
-      p.skip_passes = false;
-      const auto full = codec::encode(source, p, codec::FileFormat::Codestream);
-      p.skip_passes = true;
-      codec::EncodeReport report;
-      const auto skipped = codec::encode(source, p, codec::FileFormat::Codestream, &report);
+      const auto [full, skipped, report] = encode_both_ways(source, p);
       ++cases;
       if (skipped == full) {
         ++identical;
