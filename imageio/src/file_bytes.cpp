@@ -23,13 +23,6 @@ std::vector<std::uint8_t> read_whole_file(const std::string& path) {
   FilePtr file(std::fopen(path.c_str(), "rb"), &std::fclose);
   if (!file) throw IoError(path, std::string("cannot open: ") + std::strerror(errno));
   std::vector<std::uint8_t> bytes;
-  // One read into a buffer of the file's size where the size is known (a regular file); then
-  // chunks until the end, for pipes and files that grow.
-  struct stat info {};
-  if (::fstat(::fileno(file.get()), &info) == 0 && S_ISREG(info.st_mode) && info.st_size > 0) {
-    bytes.resize(static_cast<std::size_t>(info.st_size));
-    bytes.resize(std::fread(bytes.data(), 1, bytes.size(), file.get()));
-  }
   std::uint8_t chunk[1 << 16];
   while (std::size_t n = std::fread(chunk, 1, sizeof chunk, file.get())) {
     bytes.insert(bytes.end(), chunk, chunk + n);

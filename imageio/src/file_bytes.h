@@ -10,6 +10,7 @@ namespace imageio::detail {
 // Whole-file byte access for the formats we parse ourselves (PFM, PNM).
 // Errors are IoError(path, ...).
 
+// Reads in chunks to the end: for pipes and devices (FileBytes maps regular files instead).
 std::vector<std::uint8_t> read_whole_file(const std::string& path);
 
 // A whole file's bytes, read-only: mapped from the page cache for a regular file (no copy, no fresh

@@ -34,8 +34,8 @@ std::vector<std::uint8_t> encode_pfm(const Image& image) {
 }  // namespace
 
 Image read_pfm(const std::string& path) {
-  const std::vector<std::uint8_t> bytes = detail::read_whole_file(path);
-  return parse_pfm(bytes, path);
+  const detail::FileBytes file(path);
+  return parse_pfm(file.bytes(), path);
 }
 
 void write_pfm(const std::string& path, const Image& image) {

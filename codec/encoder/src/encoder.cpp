@@ -16,10 +16,8 @@
 #include "codec/encoder/dwt_choice.h"
 
 #include <chrono>
-#include <cstdlib>
 #include <cmath>
 #include <memory>
-#include <optional>
 
 namespace codec {
 namespace {
@@ -133,10 +131,6 @@ std::vector<std::uint8_t> tile_body(const CodedTile& coded, const EncodeParams& 
   return body;
 }
 
-}  // namespace
-
-namespace {
-
 std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* consumable, const EncodeParams& params,
                                        FileFormat format, EncodeReport* report_out) {
   using Clock = std::chrono::steady_clock;
@@ -224,11 +218,10 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
     double energy = 0;
     for (const CodedTile& tile : tiles)
       for (std::size_t b = 0; b < tile.blocks.size(); ++b) {
-        hulls.push_back(rate::convex_hull(tile.blocks[b].passes, tile.block_weights[b]));
-        energy += tile.blocks[b].energy * tile.block_weights[b];
+        hulls.push_back(rate::convex_hull(tile.blocks[b].passes, tile.jobs[b].weight));
+        energy += tile.blocks[b].energy * tile.jobs[b].weight;
       }
-    std::optional<rate::RateAllocator> allocator_storage(std::in_place, hulls);
-    const rate::RateAllocator& allocator = *allocator_storage;
+    const rate::RateAllocator allocator(hulls);
     auto apply = [&](const std::vector<std::vector<int>>& per_layer) {  // [layer][global block]
       std::size_t g = 0;
       for (std::size_t t = 0; t < tiles.size(); ++t)
@@ -327,16 +320,13 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
       pool.parallel_for(starved.size(), [&](std::size_t k) {
         CodedTile& tile = tiles[starved[k].first];
         const std::size_t b = starved[k].second;
-        for (const BlockJob& job : tile.jobs)
-          if (job.block_index == b) {
-            t1::EncodedBlock eb = code_block(tile, job, params, tile.block_magnitude_bitplanes[b]);
-            eb.missing_msbs = tile.blocks[b].missing_msbs;  // unchanged: the same bit-planes
-            tile.blocks[b] = std::move(eb);
-            break;
-          }
+        t1::EncodedBlock eb = code_block(tile, tile.jobs[b], params, tile.block_magnitude_bitplanes[b]);
+        eb.missing_msbs = tile.blocks[b].missing_msbs;  // unchanged: the same bit-planes
+        tile.blocks[b] = std::move(eb);
       });
-      recode_ms += since(recode_start);
-      report.times.tier1 += since(recode_start);
+      const double ms = since(recode_start);
+      recode_ms += ms;
+      report.times.tier1 += ms;
       continue;
     }
     break;

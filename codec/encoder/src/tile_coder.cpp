@@ -1,9 +1,10 @@
 #include "codec/encoder/tile_coder.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
+#include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <string>
 
 #include <sys/mman.h>
@@ -11,15 +12,12 @@
 
 #include "codec/encoder/component_transform.h"
 #include "codec/encoder/encoder.h"
-#include "dwt_gpu/gpu_backend.h"
-
-#include <atomic>
-#include <chrono>
 #include "codec/encoder/quantization.h"
 #include "codec/rate/hull.h"
 #include "codec/rate/selection.h"
-#include "dwt/norms.h"
 #include "codec/structure/error.h"
+#include "dwt/norms.h"
+#include "dwt_gpu/gpu_backend.h"
 
 namespace codec {
 namespace {
@@ -133,6 +131,14 @@ double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std
 // hand-out, small enough to balance two to sixteen threads.
 constexpr std::size_t kRowsPerItem = 16;
 
+// Calls rows(y0, y1) for consecutive chunks of [0, height) on the pool.
+template <class Rows>
+void for_row_chunks(dwt_cpu::ThreadPool& pool, std::size_t height, Rows&& rows) {
+  pool.parallel_for((height + kRowsPerItem - 1) / kRowsPerItem, [&](std::size_t item) {
+    rows(item * kRowsPerItem, std::min(height, (item + 1) * kRowsPerItem));
+  });
+}
+
 // Stage 1: each tile-component's samples, DC level shifted (T.800 G.1.2) and, for three equal
 // components, through the RCT or ICT (G.2, G.3), in one pass over the source, by row chunks.
 // Lossless planes are integers; lossy ones floats, ready for the 9/7.
@@ -202,8 +208,8 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
   // The component transform's three components share one geometry (make_plan checks it).
   if (mct) {
     const std::int32_t s0 = shift_of(0), s1 = shift_of(1), s2 = shift_of(2);
-    pool.parallel_for((h + kRowsPerItem - 1) / kRowsPerItem, [&](std::size_t item) {
-      for (std::size_t y = item * kRowsPerItem; y < std::min(h, (item + 1) * kRowsPerItem); ++y) {
+    for_row_chunks(pool, h, [&](std::size_t y0, std::size_t y1) {
+      for (std::size_t y = y0; y < y1; ++y) {
         const std::int32_t *r = source_row(0, y), *g = source_row(1, y), *b = source_row(2, y);
         if (lossless) {
           rct_forward_row(r, g, b, s0, s1, s2, out.integers[0].data() + y * w, out.integers[1].data() + y * w,
@@ -214,22 +220,22 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
         }
       }
       if (release_source)
-        for (std::size_t c = 0; c < 3; ++c) release_rows(*consumable, c, item * kRowsPerItem, std::min(h, (item + 1) * kRowsPerItem));
+        for (std::size_t c = 0; c < 3; ++c) release_rows(*consumable, c, y0, y1);
     });
   }
   for (std::size_t c = mct ? 3 : 0; c < nc; ++c) {
     const TileComponent& tc = tile.components[c];
     const auto cw = static_cast<std::size_t>(tc.rect.width()), ch = static_cast<std::size_t>(tc.rect.height());
     const std::int32_t shift = shift_of(c);
-    pool.parallel_for((ch + kRowsPerItem - 1) / kRowsPerItem, [&](std::size_t item) {
-      for (std::size_t y = item * kRowsPerItem; y < std::min(ch, (item + 1) * kRowsPerItem); ++y) {
+    for_row_chunks(pool, ch, [&](std::size_t y0, std::size_t y1) {
+      for (std::size_t y = y0; y < y1; ++y) {
         const std::int32_t* src = source_row(c, y);
         if (lossless)
           for (std::size_t x = 0; x < cw; ++x) out.integers[c][y * cw + x] = src[x] - shift;
         else
           for (std::size_t x = 0; x < cw; ++x) out.floats[c][y * cw + x] = static_cast<float>(src[x] - shift);
       }
-      if (release_source) release_rows(*consumable, c, item * kRowsPerItem, std::min(ch, (item + 1) * kRowsPerItem));
+      if (release_source) release_rows(*consumable, c, y0, y1);
     });
   }
   if (release_source)
@@ -301,10 +307,11 @@ void find_guard_bits(const Tile& tile, const CodingPlan& plan, CodedTile& coded)
   }
 }
 
-// Stage 4's work list: every code-block of the tile, in (component, resolution, precinct, band)
-// order, with what tier-1 and rate control need to know of it.
+// Stage 4's work list: every code-block of the tile, indexed by CodeBlock::index (which build_tile
+// numbers in (component, resolution, precinct, band) order), with what tier-1 and rate control
+// need to know of it.
 std::vector<BlockJob> block_jobs(const Tile& tile, const CodingPlan& plan, bool lossless) {
-  std::vector<BlockJob> jobs;
+  std::vector<BlockJob> jobs(tile.code_blocks);
   for (std::size_t c = 0; c < tile.components.size(); ++c) {
     const TileComponent& tc = tile.components[c];
     const ComponentQuantization& q = plan.quantization[c];
@@ -331,7 +338,7 @@ std::vector<BlockJob> block_jobs(const Tile& tile, const CodingPlan& plan, bool 
               job.inverse_step = static_cast<float>(1.0 / step);
               job.step = static_cast<float>(step);
             }
-            jobs.push_back(job);
+            jobs[cb.index] = job;
           }
     }
   }
@@ -410,8 +417,6 @@ CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const Cod
   coded.jobs = block_jobs(tile, plan, lossless);
   coded.blocks.resize(tile.code_blocks);
   coded.block_magnitude_bitplanes.assign(tile.code_blocks, 0);
-  coded.block_weights.assign(tile.code_blocks, 1.0);
-  for (const BlockJob& job : coded.jobs) coded.block_weights[job.block_index] = job.weight;
   std::atomic<std::size_t> finished{0};
   auto run = [&](const std::vector<std::size_t>& which, t1::StopRule stop) {
     pool.parallel_for(which.size(), [&](std::size_t k) {

@@ -16,26 +16,28 @@ namespace {
 
 constexpr int kQuietPlanesToStop = 2;
 
-void validate_shape(const void* origin, std::ptrdiff_t stride, int width, int height, int magnitude_bitplanes) {
+void validate_dimensions(int width, int height, int magnitude_bitplanes) {
   if (width < 1 || height < 1)
     throw std::invalid_argument("code-block must be at least 1x1, got " + std::to_string(width) + "x" +
                                 std::to_string(height));
-  if (origin == nullptr || stride < width)
-    throw std::invalid_argument("code-block rows " + std::to_string(stride) + " apart are narrower than its width " +
-                                std::to_string(width));
   if (magnitude_bitplanes < 0 || magnitude_bitplanes > 31)
     throw std::invalid_argument("magnitude bit-planes must be 0..31, got " + std::to_string(magnitude_bitplanes));
 }
 
+// A block in its plane.
+void validate_shape(const void* origin, std::ptrdiff_t stride, int width, int height, int magnitude_bitplanes) {
+  validate_dimensions(width, height, magnitude_bitplanes);
+  if (origin == nullptr || stride < width)
+    throw std::invalid_argument("code-block rows " + std::to_string(stride) + " apart are narrower than its width " +
+                                std::to_string(width));
+}
+
+// A block given as its own array.
 void validate(std::span<const std::int32_t> coefficients, int width, int height, int magnitude_bitplanes) {
-  if (width < 1 || height < 1)
-    throw std::invalid_argument("code-block must be at least 1x1, got " + std::to_string(width) + "x" +
-                                std::to_string(height));
+  validate_dimensions(width, height, magnitude_bitplanes);
   if (coefficients.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
     throw std::invalid_argument("code-block of " + std::to_string(width) + "x" + std::to_string(height) + " given " +
                                 std::to_string(coefficients.size()) + " coefficients");
-  if (magnitude_bitplanes < 0 || magnitude_bitplanes > 31)
-    throw std::invalid_argument("magnitude bit-planes must be 0..31, got " + std::to_string(magnitude_bitplanes));
 }
 
 // A pass whose codeword length is only known once its segment has been terminated.

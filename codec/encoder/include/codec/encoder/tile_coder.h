@@ -75,15 +75,13 @@ inline constexpr double kStopSafety = 4;
 struct CodedTile {
   Tile tile;
   std::vector<t1::EncodedBlock> blocks;  // indexed by CodeBlock::index
-  // Image-domain squared error per unit of tier-1 distortion, per block (rate control).
-  std::vector<double> block_weights;
   std::vector<int> block_magnitude_bitplanes;  // the Mb each block was coded with
   // Each tile-component's wavelet coefficients in the Mallat layout, kept so that blocks can be
   // coded again (pass skipping) and the encoder can rebuild what a decoder sees (PSNR targets):
   // reversible integers (lossless), or floats that tier-1 quantises as it loads each block (lossy).
   std::vector<std::vector<std::int32_t>> quantized;
   std::vector<FloatPlane> coefficients;
-  std::vector<BlockJob> jobs;                        // every block, for recoding
+  std::vector<BlockJob> jobs;  // every block, indexed by CodeBlock::index: where it lies, its weight, its step
   double stop_threshold = 0;                         // the StopRule tier-1 ran with; 0: every pass
   std::vector<int> guard_bits_needed;    // per component: the fewest guard bits its coefficients fit in
 };
