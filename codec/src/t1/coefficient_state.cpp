@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 
+#include "block_loading_simd.h"
 #include "codec/t1/dead_zone.h"
 #include "neighbourhood.h"
 
@@ -75,12 +76,34 @@ CoefficientState::CoefficientState(std::span<const std::int32_t> coefficients, i
 }
 
 CoefficientState::CoefficientState(const IntegerBlock& block) : CoefficientState(block.width, block.height) {
-  load([&](int x, int y, std::uint8_t&) { return block.origin[y * block.stride + x]; }, false);
+  std::uint32_t any_bits = 0;
+  for (int y = 0; y < height_; ++y) {
+    const auto i = static_cast<std::size_t>((y + 1) * stride_ + 1);
+    any_bits |= simd::load_index_row(block.origin + y * block.stride, static_cast<std::size_t>(width_),
+                                     magnitude_.data() + i, flags_.data() + i, energy_);
+  }
+  bit_planes_ = static_cast<int>(std::bit_width(any_bits));
 }
 
+// The same as load() with the fractions of quantize() (dead_zone.h), in two vectorised sweeps:
+// quantisation is monotonic in |c|, so the largest magnitude gives the bit-planes and with them the
+// fixed point, and then fine = floor(|c| / step * 2^F) is the index with the F leading bits of its
+// fraction appended, exactly as load() assembles it.
 CoefficientState::CoefficientState(const FloatBlock& block) : CoefficientState(block.width, block.height) {
-  load([&](int x, int y, std::uint8_t& fraction) { return quantize(block.origin[y * block.stride + x], block.inverse_step, fraction); },
-       true);
+  const auto w = static_cast<std::size_t>(width_);
+  float peak = 0;
+  for (int y = 0; y < height_; ++y)
+    peak = std::max(peak, simd::peak_scaled_magnitude(block.origin + y * block.stride, w, block.inverse_step));
+  bit_planes_ = static_cast<int>(std::bit_width(static_cast<std::uint32_t>(static_cast<std::int32_t>(peak))));
+  fine_bits_ = std::clamp(31 - bit_planes_, 0, kFractionBits);
+  fine_.assign(magnitude_.size(), 0);
+  double sum = 0;
+  for (int y = 0; y < height_; ++y) {
+    const auto i = static_cast<std::size_t>((y + 1) * stride_ + 1);
+    sum += simd::quantize_row(block.origin + y * block.stride, w, block.inverse_step, fine_bits_, fine_.data() + i,
+                              magnitude_.data() + i, flags_.data() + i);
+  }
+  energy_ = std::ldexp(sum, -2 * fine_bits_);
 }
 
 BlockView CoefficientState::view(bool causal) {

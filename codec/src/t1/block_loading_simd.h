@@ -1,0 +1,28 @@
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+// The row kernels that load a code-block into tier-1's working arrays (CoefficientState),
+// vectorised with Highway and dispatched at run time to the best instruction set. Each handles
+// one row of `n` coefficients; the arrays it writes are the state's, at the row's first
+// coefficient.
+namespace codec::t1::simd {
+
+// The largest scaled magnitude min(|c| * inverse_step, kLargestMagnitude) of the row (dead_zone.h),
+// a NaN counting as the clamp. Quantisation is monotonic in it, so its index is the row's largest.
+float peak_scaled_magnitude(const float* row, std::size_t n, float inverse_step);
+
+// Quantises a row of float coefficients: fine = floor(scaled magnitude * 2^fine_bits), the
+// magnitude in fixed point with fine_bits fraction bits (the caller chooses fine_bits so that it
+// stays below 2^31); magnitude = fine >> fine_bits, the quantisation index; flags = kNeg where the
+// index is negative. Returns the sum of fine^2 (in units of 2^(-2 fine_bits)).
+double quantize_row(const float* row, std::size_t n, float inverse_step, int fine_bits, std::uint32_t* fine,
+                    std::uint32_t* magnitude, std::uint16_t* flags);
+
+// Loads a row of integer indices (or reversible coefficients): magnitude = |c| (in unsigned
+// arithmetic, so INT32_MIN gives 2^31), flags = kNeg where c < 0. Adds the sum of squared
+// magnitudes to `energy` and returns the OR of the magnitudes.
+std::uint32_t load_index_row(const std::int32_t* row, std::size_t n, std::uint32_t* magnitude, std::uint16_t* flags,
+                             double& energy);
+
+}  // namespace codec::t1::simd
