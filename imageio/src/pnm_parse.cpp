@@ -14,6 +14,7 @@
 
 #include "header_text.h"
 #include "image_checks.h"
+#include "imageio/plane_memory.h"
 #include "imageio/pnm.h"
 
 namespace imageio {
@@ -241,7 +242,7 @@ struct PlanarSink {
     // more image's worth of memory.
     image.planes.resize(std::size_t(channels));
     for (auto& plane : image.planes) {
-      plane.resize(samples / std::size_t(channels));
+      resize_with_huge_pages(plane, samples / std::size_t(channels));
       planes.push_back(plane.data());
     }
   }

@@ -18,6 +18,7 @@
 #include "codec/structure/error.h"
 #include "dwt/norms.h"
 #include "dwt_gpu/gpu_backend.h"
+#include "imageio/plane_memory.h"
 
 namespace codec {
 namespace {
@@ -189,7 +190,7 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
     if (in_place)
       out.integers[c] = std::move(consumable->components[c].samples);
     else
-      lossless ? out.integers[c].resize(n) : out.floats[c].resize(n);
+      lossless ? imageio::resize_with_huge_pages(out.integers[c], n) : imageio::resize_with_huge_pages(out.floats[c], n);
   }
   const bool mct = plan.rct || plan.ict;
   const TileComponent& first = tile.components[0];

@@ -1,0 +1,23 @@
+#pragma once
+#include <cstddef>
+#include <vector>
+
+namespace imageio {
+
+// Asks the kernel to back the 2 MiB-aligned part of [data, data + bytes) with transparent huge
+// pages, before anything touches it. A 2048x2048 plane of 32-bit samples is 4096 ordinary pages:
+// the first touch of each costs a fault and a page clear, some 30 ms for an RGB image's planes
+// spread over the stages that fill them, where 2 MiB pages take a handful of faults. Only a hint:
+// where the system does not offer huge pages (or the range holds no aligned 2 MiB) nothing changes.
+void prefer_huge_pages(const void* data, std::size_t bytes);
+
+// Sizes an empty vector to `n` elements through prefer_huge_pages: capacity first, the hint,
+// then the elements (value-initialised, or left as they are by an allocator that does so).
+template <class T, class Allocator>
+void resize_with_huge_pages(std::vector<T, Allocator>& v, std::size_t n) {
+  v.reserve(n);
+  prefer_huge_pages(v.data(), n * sizeof(T));
+  v.resize(n);
+}
+
+}  // namespace imageio
