@@ -1,5 +1,7 @@
 #include "coding_passes.h"
 
+#include <algorithm>
+
 #include "distortion.h"
 #include "neighbourhood.h"
 
@@ -14,8 +16,8 @@ struct MqSymbols {
   ContextSet& cx;
 
   void decision(int bit, int context) { mq.encode(bit, cx[static_cast<std::size_t>(context)]); }
-  void sign(unsigned negative, std::uint16_t flags) {
-    const std::uint8_t entry = kSignTable[sign_table_index(flags)];
+  void sign(unsigned negative, unsigned sign_index) {
+    const std::uint8_t entry = kSignTable[sign_index];
     mq.encode(static_cast<int>(negative ^ (entry & 1u)), cx[entry >> 1]);
   }
 };
@@ -24,19 +26,47 @@ struct RawSymbols {
   RawWriter& raw;
 
   void decision(int bit, int /*context*/) { raw.put(bit); }
-  void sign(unsigned negative, std::uint16_t /*flags*/) { raw.put(static_cast<int>(negative)); }  // D.6: as is
+  void sign(unsigned negative, unsigned /*sign_index*/) { raw.put(static_cast<int>(negative)); }  // D.6: as is
 };
 
 inline int bit_at(std::uint32_t magnitude, int plane) { return static_cast<int>((magnitude >> plane) & 1u); }
 
-// Codes the sign of a coefficient whose significance bit just came out 1, then records it.
+// Walks the stripe columns in the scan order of T.800 D.1: stripes of four rows top to bottom,
+// columns left to right. `visit(word, i, rows)` gets the column's word, the index of its top
+// coefficient in the per-coefficient arrays and how many of its rows lie in the block (4 but in a
+// last, partial stripe).
+template <class Visit>
+inline void for_each_column(const BlockView& v, Visit&& visit) {
+  for (int y0 = 0; y0 < v.height; y0 += 4) {
+    const int rows = std::min(4, v.height - y0);
+    std::uint32_t* word = v.columns + (y0 / 4) * v.column_stride;
+    const std::ptrdiff_t top = v.index(0, y0);
+    for (int x = 0; x < v.width; ++x) visit(word + x, top + x, rows);
+  }
+}
+
+// Calls row(r, i) for the rows r of a column from `first` on, i the coefficient's index; unrolled
+// for a full column, where a four-trip loop would cost a mispredicted exit every time.
+template <class Row>
+inline void for_each_row(const BlockView& v, std::ptrdiff_t top, int first, int rows, Row&& row) {
+  if (rows == 4 && first == 0) {
+    row(0, top);
+    row(1, top + v.stride);
+    row(2, top + 2 * v.stride);
+    row(3, top + 3 * v.stride);
+    return;
+  }
+  for (int r = first; r < rows; ++r) row(r, top + r * v.stride);
+}
+
+// Codes the sign of the coefficient in row r of the column at `w` (index i) whose significance bit
+// just came out 1, then records it.
 template <class Symbols>
-inline std::int64_t become_significant(const BlockView& v, std::ptrdiff_t i, int row, const PlaneDistortion& d,
-                                       Symbols& s) {
-  std::uint16_t* f = v.flags + i;
-  const unsigned negative = static_cast<unsigned>(*f >> 15);
-  s.sign(negative, *f);
-  make_significant(f, v.stride, negative, v.causal && row == 0);
+inline std::int64_t become_significant(const BlockView& v, std::uint32_t* w, std::ptrdiff_t i, int r,
+                                       const PlaneDistortion& d, Symbols& s) {
+  const unsigned negative = static_cast<unsigned>(v.sign[i] >> 15);
+  s.sign(negative, column::sign_index(w, r));
+  column::make_significant(w, v.column_stride, r, negative, v.causal);
   return d.significance_gain(v.fine[i]);
 }
 
@@ -45,16 +75,17 @@ template <class Symbols>
 double significance_pass_impl(const BlockView v, int plane, const ZeroCodingTable& zc, Symbols s) {
   const PlaneDistortion d(plane + v.fine_bits);
   DistortionSum gain(plane + v.fine_bits, v.fine_bits);
-  // A column has no candidate if all four are significant, or none has a significant neighbour
-  // (then none of them becomes significant either, so the column stays as it is).
-  auto worth_visiting = [](ColumnSummary c) { return !(c.all & kSig) && (c.any & kNeighbourMask); };
-  for_each_in_scan_order(v, worth_visiting, [&](std::ptrdiff_t i, int row) {
-    std::uint16_t& f = v.flags[i];
-    if ((f & kSig) || !(f & kNeighbourMask)) return;
-    const int bit = bit_at(v.magnitude[i], plane);
-    s.decision(bit, zc[f & kNeighbourMask]);
-    f |= kVisited;
-    if (bit) gain.add(become_significant(v, i, row, d, s));
+  for_each_column(v, [&](std::uint32_t* w, std::ptrdiff_t top, int rows) {
+    // Nothing significant in the whole window: no candidate here, and none will appear.
+    if ((*w & column::kWindow) == 0) return;
+    for_each_row(v, top, 0, rows, [&](int r, std::ptrdiff_t i) {
+      const std::uint32_t around = *w >> (3 * r);  // reloaded: the row above may just have changed it
+      if ((around & column::kCentre) || !(around & column::kNeighbours)) return;
+      const int bit = bit_at(v.magnitude[i], plane);
+      s.decision(bit, zc[around & column::kNeighbourhood]);
+      *w |= column::visited(r);
+      if (bit) gain.add(become_significant(v, w, i, r, d, s));
+    });
   });
   return gain.value();
 }
@@ -64,13 +95,19 @@ template <class Symbols>
 double refinement_pass_impl(const BlockView v, int plane, Symbols s) {
   const PlaneDistortion d(plane + v.fine_bits);
   DistortionSum gain(plane + v.fine_bits, v.fine_bits);
-  auto worth_visiting = [](ColumnSummary c) { return (c.any & kSig) != 0; };
-  for_each_in_scan_order(v, worth_visiting, [&](std::ptrdiff_t i, int /*row*/) {
-    std::uint16_t& f = v.flags[i];
-    if ((f & (kSig | kVisited)) != kSig) return;
-    s.decision(bit_at(v.magnitude[i], plane), refinement_context(f));
-    f |= kRefined;
-    gain.add_units(d.refinement_units(v.fine[i]));
+  for_each_column(v, [&](std::uint32_t* w, std::ptrdiff_t top, int rows) {
+    const std::uint32_t word = *w;  // refinement changes no significance: one load does
+    // Significant before this plane: significant, and not made so by this plane's first pass.
+    const unsigned due = column::significant_rows(word) & ~(word >> 24) & 0xFu;
+    if (due == 0) return;
+    std::uint32_t refined = 0;
+    for_each_row(v, top, 0, rows, [&](int r, std::ptrdiff_t i) {
+      if (!(due & (1u << r))) return;
+      s.decision(bit_at(v.magnitude[i], plane), refinement_context(word, r));
+      refined |= column::refined(r);
+      gain.add_units(d.refinement_units(v.fine[i]));
+    });
+    *w = word | refined;
   });
   return gain.value();
 }
@@ -114,52 +151,42 @@ double refinement_pass_raw(const BlockView& v, int plane, RawWriter& raw) {
   const BlockView v = view;
   MqEncoder mq = coder;
   MqSymbols s{mq, cx};
-  const std::ptrdiff_t stride = v.stride;
   const PlaneDistortion d(plane + v.fine_bits);
   DistortionSum gain(plane + v.fine_bits, v.fine_bits);
-  for (int y0 = 0; y0 < v.height; y0 += 4) {
-    const int rows = std::min(4, v.height - y0);
-    for (int x = 0; x < v.width; ++x) {
-      const std::ptrdiff_t top = v.index(x, y0);
-      int row = 0;
-      if (rows == 4) {
-        // Run-length mode: a full column of four coefficients, none significant or visited, and
-        // all with the all-zero neighbourhood (zero-coding context 0 in every orientation).
-        std::uint16_t* f = v.flags + top;
-        const unsigned f0 = f[0], f1 = f[stride], f2 = f[2 * stride], f3 = f[3 * stride];
-        // Nothing to code when each of the four is significant or was coded by the significance
-        // pass (kVisited sits one bit above kSig); only the marks need clearing.
-        static_assert(kVisited == kSig << 1);
-        if ((f0 | f0 >> 1) & (f1 | f1 >> 1) & (f2 | f2 >> 1) & (f3 | f3 >> 1) & kSig) {
-          for (int k = 0; k < 4; ++k) f[k * stride] = static_cast<std::uint16_t>(f[k * stride] & ~kVisited);
-          continue;
-        }
-        const unsigned any = f0 | f1 | f2 | f3;
-        if (!(any & (kSig | kVisited | kNeighbourMask))) {
-          row = first_one_in_column(v, top, plane);
-          if (row == 4) {
-            mq.encode(0, cx[kRunLengthContext]);
-            continue;
-          }
-          mq.encode(1, cx[kRunLengthContext]);
-          mq.encode(row >> 1, cx[kUniformContext]);
-          mq.encode(row & 1, cx[kUniformContext]);
-          gain.add(become_significant(v, top + row * stride, row, d, s));
-          ++row;
-        }
+  for_each_column(v, [&](std::uint32_t* w, std::ptrdiff_t top, int rows) {
+    int r = 0;
+    if (rows == 4) {
+      const std::uint32_t word = *w;
+      // Nothing to code when each of the four is significant or was coded by the significance
+      // pass; only the marks need clearing.
+      if ((column::significant_rows(word) | (word >> 24)) == 0xFu) {
+        *w = word & ~column::kVisitedAll;
+        return;
       }
-      for (std::ptrdiff_t i = top + row * stride; row < rows; ++row, i += stride) {
-        std::uint16_t& f = v.flags[i];
-        if (f & (kSig | kVisited)) {
-          f = static_cast<std::uint16_t>(f & ~kVisited);
-          continue;
+      // Run-length mode: none of the four significant or visited, and all with the all-zero
+      // neighbourhood (zero-coding context 0 in every orientation).
+      if ((word & (column::kWindow | column::kVisitedAll)) == 0) {
+        r = first_one_in_column(v, top, plane);
+        if (r == 4) {
+          mq.encode(0, cx[kRunLengthContext]);
+          return;
         }
-        const int bit = bit_at(v.magnitude[i], plane);
-        mq.encode(bit, cx[zc[f & kNeighbourMask]]);
-        if (bit) gain.add(become_significant(v, i, row, d, s));
+        mq.encode(1, cx[kRunLengthContext]);
+        mq.encode(r >> 1, cx[kUniformContext]);
+        mq.encode(r & 1, cx[kUniformContext]);
+        gain.add(become_significant(v, w, top + r * v.stride, r, d, s));
+        ++r;
       }
     }
-  }
+    for_each_row(v, top, r, rows, [&](int row, std::ptrdiff_t i) {
+      const std::uint32_t word = *w;
+      if (word & (column::self(row) | column::visited(row))) return;
+      const int bit = bit_at(v.magnitude[i], plane);
+      mq.encode(bit, cx[zc[(word >> (3 * row)) & column::kNeighbourhood]]);
+      if (bit) gain.add(become_significant(v, w, i, row, d, s));
+    });
+    *w &= ~column::kVisitedAll;
+  });
   coder = mq;
   return gain.value();
 }

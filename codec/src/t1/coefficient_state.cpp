@@ -18,8 +18,9 @@ CoefficientState::CoefficientState(int width, int height)
     : width_(width),
       height_(height),
       stride_(width + 2),
-      flags_(static_cast<std::size_t>(stride_ * (height + 2)), 0),
-      magnitude_(flags_.size(), 0) {}
+      columns_(static_cast<std::size_t>(stride_ * ((height + 3) / 4 + 2)), 0),
+      signs_(static_cast<std::size_t>(stride_ * (height + 2)), 0),
+      magnitude_(signs_.size(), 0) {}
 
 template <class Sample>
 void CoefficientState::load(Sample&& sample, bool with_fractions) {
@@ -35,7 +36,7 @@ void CoefficientState::load(Sample&& sample, bool with_fractions) {
       const std::uint32_t m = c < 0 ? 0u - static_cast<std::uint32_t>(c) : static_cast<std::uint32_t>(c);
       const std::size_t i = row + static_cast<std::size_t>(x);
       magnitude_[i] = m;
-      flags_[i] = c < 0 ? std::uint16_t{kNeg} : std::uint16_t{0};
+      signs_[i] = c < 0 ? std::uint16_t{kNeg} : std::uint16_t{0};
       if (with_fractions) fine_[i] = fraction;
       any_bits |= m;
     }
@@ -80,7 +81,7 @@ CoefficientState::CoefficientState(const IntegerBlock& block) : CoefficientState
   for (int y = 0; y < height_; ++y) {
     const auto i = static_cast<std::size_t>((y + 1) * stride_ + 1);
     any_bits |= simd::load_index_row(block.origin + y * block.stride, static_cast<std::size_t>(width_),
-                                     magnitude_.data() + i, flags_.data() + i, energy_);
+                                     magnitude_.data() + i, signs_.data() + i, energy_);
   }
   bit_planes_ = static_cast<int>(std::bit_width(any_bits));
 }
@@ -101,7 +102,7 @@ CoefficientState::CoefficientState(const FloatBlock& block) : CoefficientState(b
   for (int y = 0; y < height_; ++y) {
     const auto i = static_cast<std::size_t>((y + 1) * stride_ + 1);
     sum += simd::quantize_row(block.origin + y * block.stride, w, block.inverse_step, fine_bits_, fine_.data() + i,
-                              magnitude_.data() + i, flags_.data() + i);
+                              magnitude_.data() + i, signs_.data() + i);
   }
   energy_ = std::ldexp(sum, -2 * fine_bits_);
 }
@@ -109,8 +110,8 @@ CoefficientState::CoefficientState(const FloatBlock& block) : CoefficientState(b
 BlockView CoefficientState::view(bool causal) {
   const std::ptrdiff_t origin = stride_ + 1;
   const std::uint32_t* fine = fine_.empty() ? magnitude_.data() : fine_.data();
-  return BlockView{flags_.data() + origin, magnitude_.data() + origin, width_, height_, stride_, causal,
-                   fine + origin, fine_bits_};
+  return BlockView{columns_.data() + origin, stride_, magnitude_.data() + origin, signs_.data() + origin,
+                   width_, height_, stride_, causal, fine + origin, fine_bits_};
 }
 
 }  // namespace codec::t1

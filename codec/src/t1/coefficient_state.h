@@ -8,9 +8,9 @@
 
 namespace codec::t1 {
 
-// Owns a code-block's working arrays (see BlockView): magnitudes and per-coefficient flags, the
-// latter starting with only each coefficient's sign set, and, when the coefficients' fractions
-// are given, the fixed-point magnitudes distortion is measured on.
+// Owns a code-block's working arrays (see BlockView): magnitudes and signs, the stripe column
+// words (all clear to begin with) and, when the coefficients' fractions are given, the fixed-point
+// magnitudes distortion is measured on.
 class CoefficientState {
  public:
   // `fractions`: empty, or one per coefficient (row by row like `coefficients`): the part of
@@ -37,7 +37,8 @@ class CoefficientState {
   int width_;
   int height_;
   std::ptrdiff_t stride_;
-  std::vector<std::uint16_t> flags_;
+  std::vector<std::uint32_t> columns_;  // stripe column words (neighbourhood.h), bordered
+  std::vector<std::uint16_t> signs_;    // kNeg or 0 per coefficient
   std::vector<std::uint32_t> magnitude_;
   std::vector<std::uint32_t> fine_;  // empty when no fractions were given
   int fine_bits_ = 0;

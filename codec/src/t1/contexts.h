@@ -19,13 +19,13 @@ inline constexpr int kContextCount = 19;
 
 using ContextSet = std::array<MqContext, kContextCount>;
 
-// Magnitude refinement context (Table D.4) from a coefficient's flags: 14 for a first refinement
-// with no significant neighbour, 15 with one, 16 for every later refinement. A lookup rather than
-// a branch: whether a neighbour is significant is close to random in busy blocks.
-inline int refinement_context(std::uint16_t flags) {
+// Magnitude refinement context (Table D.4) of row r of a stripe column word: 14 for a first
+// refinement with no significant neighbour, 15 with one, 16 for every later refinement. A lookup
+// rather than a branch: whether a neighbour is significant is close to random in busy blocks.
+inline int refinement_context(std::uint32_t word, int r) {
   static constexpr std::uint8_t kContexts[4] = {kRefineFirstQuiet, kRefineFirstBusy, kRefineLater, kRefineLater};
-  const unsigned refined = (flags & kRefined) ? 2u : 0u;
-  return kContexts[refined | ((flags & kNeighbourMask) != 0 ? 1u : 0u)];
+  const unsigned refined = (word & column::refined(r)) ? 2u : 0u;
+  return kContexts[refined | (((word >> (3 * r)) & column::kNeighbours) != 0 ? 1u : 0u)];
 }
 
 // Initial states (T.800 D.4): UNIFORM 46, run-length 3, the all-zero neighbourhood
@@ -56,14 +56,17 @@ constexpr std::uint8_t zero_coding_context_hh(int h, int v, int d) {
   return hv >= 2 ? 2 : static_cast<std::uint8_t>(hv);
 }
 
-using ZeroCodingTable = std::array<std::uint8_t, 256>;  // indexed by the 8 neighbour bits
+// Indexed by a row's 9-bit neighbourhood in a stripe column word (neighbourhood.h): NW, N, NE,
+// W, the coefficient itself (ignored), E, SW, S, SE from bit 0 up.
+using ZeroCodingTable = std::array<std::uint8_t, 512>;
 
 constexpr ZeroCodingTable make_zero_coding_table(Orientation o) {
   ZeroCodingTable t{};
-  for (unsigned n = 0; n < 256; ++n) {
-    const int h = !!(n & kSigW) + !!(n & kSigE);
-    const int v = !!(n & kSigN) + !!(n & kSigS);
-    const int d = !!(n & kSigNW) + !!(n & kSigNE) + !!(n & kSigSW) + !!(n & kSigSE);
+  for (unsigned n = 0; n < 512; ++n) {
+    auto bit = [n](int b) { return static_cast<int>((n >> b) & 1u); };
+    const int h = bit(3) + bit(5);
+    const int v = bit(1) + bit(7);
+    const int d = bit(0) + bit(2) + bit(6) + bit(8);
     switch (o) {
       case Orientation::LL:
       case Orientation::LH: t[n] = zero_coding_context_lh(h, v, d); break;
@@ -89,7 +92,7 @@ inline const ZeroCodingTable& zero_coding_table(Orientation o) {
 // Sign coding (Tables D.2 and D.3): the horizontal and vertical contributions, each the clamped
 // sum of +1 per positive and -1 per negative significant neighbour, select a context and the
 // predicted sign; the coder codes sign XOR prediction. Entry = (context << 1) | XORbit, indexed
-// by sign_table_index() of the neighbourhood flags.
+// by column::sign_index().
 constexpr int clamp_contribution(int sum) { return sum > 0 ? 1 : (sum < 0 ? -1 : 0); }
 
 constexpr std::uint8_t sign_entry(int h, int v) {
