@@ -890,7 +890,31 @@ TEST(T1InPlace, SameCodewordsAsFromCopiedIndices) {
         digest_block(c, exact);
         digest_block(d, exact_in_place);
         EXPECT_EQ(c.h, d.h);
+        // Without the distortion bookkeeping: the same codeword, lengths and energy, every pass 0.
+        for (const bool lossy : {true, false}) {
+          const EncodedBlock& measured = lossy ? in_place : exact_in_place;
+          const EncodedBlock skipped =
+              lossy ? codec::t1::encode_block(codec::t1::FloatBlock{origin, stride, s.w, s.h, inverse_step}, o, 31, st, {},
+                                              codec::t1::Distortion::Skipped)
+                    : codec::t1::encode_block(codec::t1::IntegerBlock{integer_plane.data() + stride + 3, stride, s.w, s.h},
+                                              o, 31, st, {}, codec::t1::Distortion::Skipped);
+          EXPECT_EQ(skipped.data, measured.data);
+          EXPECT_EQ(skipped.energy, measured.energy);
+          ASSERT_EQ(skipped.passes.size(), measured.passes.size());
+          bool measured_something = false;
+          for (std::size_t p = 0; p < skipped.passes.size(); ++p) {
+            EXPECT_EQ(skipped.passes[p].length, measured.passes[p].length);
+            EXPECT_EQ(skipped.passes[p].terminated, measured.passes[p].terminated);
+            EXPECT_EQ(skipped.passes[p].distortion_decrease, 0.0);
+            measured_something |= measured.passes[p].distortion_decrease != 0.0;
+          }
+          EXPECT_EQ(measured_something, !measured.passes.empty());
+        }
       }
+  const std::vector<std::int32_t> ones(16, 1);
+  EXPECT_THROW(codec::t1::encode_block(codec::t1::IntegerBlock{ones.data(), 4, 4, 4}, Orientation::LL, 8, {},
+                                       codec::t1::StopRule{1.0, 1.0}, codec::t1::Distortion::Skipped),
+               std::invalid_argument);  // a stop rule needs the distortion
   EXPECT_THROW(codec::t1::encode_block(codec::t1::IntegerBlock{nullptr, 4, 4, 4}, Orientation::LL, 8, {}),
                std::invalid_argument);
   const std::vector<std::int32_t> row(4, 1);

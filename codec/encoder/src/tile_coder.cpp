@@ -386,14 +386,16 @@ double predict_threshold(const std::vector<BlockJob>& jobs, const CodedTile& cod
 t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params,
                             int magnitude_bitplanes, t1::StopRule stop) {
   stop.weight = job.weight;
+  // Only rate control reads the passes' distortion: with every pass kept it need not be measured.
+  const t1::Distortion distortion = params.layers.empty() ? t1::Distortion::Skipped : t1::Distortion::Measured;
   const std::ptrdiff_t offset = static_cast<std::ptrdiff_t>(job.y0 * job.plane_width + job.x0);
   const auto stride = static_cast<std::ptrdiff_t>(job.plane_width);
   if (params.lossless)
     return t1::encode_block(t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height},
-                            job.orientation, magnitude_bitplanes, params.block_style, stop);
+                            job.orientation, magnitude_bitplanes, params.block_style, stop, distortion);
   return t1::encode_block(
       t1::FloatBlock{coded.coefficients[job.component].data() + offset, stride, job.width, job.height, job.inverse_step},
-      job.orientation, magnitude_bitplanes, params.block_style, stop);
+      job.orientation, magnitude_bitplanes, params.block_style, stop, distortion);
 }
 
 CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan, const EncodeParams& params,

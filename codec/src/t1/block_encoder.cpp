@@ -108,23 +108,28 @@ void code_segmentation_symbol(ContextSet& cx, MqEncoder& mq) {
   for (int bit : {1, 0, 1, 0}) mq.encode(bit, cx[kUniformContext]);
 }
 
+template <bool kMeasure>
 double code_pass(int pass, int plane, bool raw, const BlockView& v, const ZeroCodingTable& zc, ContextSet& cx,
                  SegmentTracker& seg, const BlockStyle& style) {
   switch (pass_kind(pass)) {
     case PassKind::Significance:
-      return raw ? significance_pass_raw(v, plane, seg.raw()) : significance_pass(v, plane, zc, cx, seg.mq());
+      return raw ? significance_pass_raw<kMeasure>(v, plane, seg.raw())
+                 : significance_pass<kMeasure>(v, plane, zc, cx, seg.mq());
     case PassKind::Refinement:
-      return raw ? refinement_pass_raw(v, plane, seg.raw()) : refinement_pass(v, plane, cx, seg.mq());
+      return raw ? refinement_pass_raw<kMeasure>(v, plane, seg.raw()) : refinement_pass<kMeasure>(v, plane, cx, seg.mq());
     case PassKind::Cleanup: break;
   }
-  const double gain = cleanup_pass(v, plane, zc, cx, seg.mq());
+  const double gain = cleanup_pass<kMeasure>(v, plane, zc, cx, seg.mq());
   if (style.segmentation_symbols) code_segmentation_symbol(cx, seg.mq());
   return gain;
 }
 
 // The coder proper, on a loaded block.
 EncodedBlock encode_state(CoefficientState& state, int width, int height, Orientation o, int magnitude_bitplanes,
-                          BlockStyle style, StopRule stop) {
+                          BlockStyle style, StopRule stop, Distortion distortion = Distortion::Measured) {
+  if (distortion == Distortion::Skipped && stop.min_slope > 0)
+    throw std::invalid_argument("a stop rule needs the passes' distortion measured");
+  const bool measure = distortion == Distortion::Measured;
   const int planes = state.bit_planes();
   if (planes > magnitude_bitplanes)
     throw std::invalid_argument("a coefficient magnitude needs " + std::to_string(planes) + " bit-planes, Mb is " +
@@ -150,7 +155,9 @@ EncodedBlock encode_state(CoefficientState& state, int width, int height, Orient
   for (int pass = 0; pass < count; ++pass) {
     const bool raw = pass_is_raw(pass, style);
     seg.begin_pass_if_needed(raw);
-    const double gain = code_pass(pass, pass_plane(pass, planes), raw, v, zc, cx, seg, style);
+    const int plane = pass_plane(pass, planes);
+    const double gain = measure ? code_pass<true>(pass, plane, raw, v, zc, cx, seg, style)
+                                : code_pass<false>(pass, plane, raw, v, zc, cx, seg, style);
     out.passes[static_cast<std::size_t>(pass)].distortion_decrease = gain;
     plane_gain += gain;
     bool last = false;
@@ -191,17 +198,17 @@ EncodedBlock encode_block(std::span<const std::int32_t> coefficients, int width,
 }
 
 EncodedBlock encode_block(const IntegerBlock& block, Orientation o, int magnitude_bitplanes, BlockStyle style,
-                          StopRule stop) {
+                          StopRule stop, Distortion distortion) {
   validate_shape(block.origin, block.stride, block.width, block.height, magnitude_bitplanes);
   CoefficientState state(block);
-  return encode_state(state, block.width, block.height, o, magnitude_bitplanes, style, stop);
+  return encode_state(state, block.width, block.height, o, magnitude_bitplanes, style, stop, distortion);
 }
 
 EncodedBlock encode_block(const FloatBlock& block, Orientation o, int magnitude_bitplanes, BlockStyle style,
-                          StopRule stop) {
+                          StopRule stop, Distortion distortion) {
   validate_shape(block.origin, block.stride, block.width, block.height, magnitude_bitplanes);
   CoefficientState state(block);
-  return encode_state(state, block.width, block.height, o, magnitude_bitplanes, style, stop);
+  return encode_state(state, block.width, block.height, o, magnitude_bitplanes, style, stop, distortion);
 }
 
 }  // namespace codec::t1

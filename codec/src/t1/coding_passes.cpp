@@ -29,6 +29,11 @@ struct RawSymbols {
   void sign(unsigned negative, unsigned /*sign_index*/) { raw.put(static_cast<int>(negative)); }  // D.6: as is
 };
 
+template <bool kMeasure>
+inline void add_gain(DistortionSum& sum, std::int64_t gain) {
+  if constexpr (kMeasure) sum.add(gain);
+}
+
 inline int bit_at(std::uint32_t magnitude, int plane) { return static_cast<int>((magnitude >> plane) & 1u); }
 
 // Walks the stripe columns in the scan order of T.800 D.1: stripes of four rows top to bottom,
@@ -61,17 +66,18 @@ inline void for_each_row(const BlockView& v, std::ptrdiff_t top, int first, int 
 
 // Codes the sign of the coefficient in row r of the column at `w` (index i) whose significance bit
 // just came out 1, then records it.
-template <class Symbols>
+template <bool kMeasure, class Symbols>
 inline std::int64_t become_significant(const BlockView& v, std::uint32_t* w, std::ptrdiff_t i, int r,
                                        const PlaneDistortion& d, Symbols& s) {
   const unsigned negative = static_cast<unsigned>(v.sign[i] >> 15);
   s.sign(negative, column::sign_index(w, r));
   column::make_significant(w, v.column_stride, r, negative, v.causal);
-  return d.significance_gain(v.fine[i]);
+  if constexpr (kMeasure) return d.significance_gain(v.fine[i]);
+  return 0;
 }
 
 // D.3.1: insignificant coefficients with at least one significant neighbour.
-template <class Symbols>
+template <bool kMeasure, class Symbols>
 double significance_pass_impl(const BlockView v, int plane, const ZeroCodingTable& zc, Symbols s) {
   const PlaneDistortion d(plane + v.fine_bits);
   DistortionSum gain(plane + v.fine_bits, v.fine_bits);
@@ -84,14 +90,14 @@ double significance_pass_impl(const BlockView v, int plane, const ZeroCodingTabl
       const int bit = bit_at(v.magnitude[i], plane);
       s.decision(bit, zc[around & column::kNeighbourhood]);
       *w |= column::visited(r);
-      if (bit) gain.add(become_significant(v, w, i, r, d, s));
+      if (bit) add_gain<kMeasure>(gain, become_significant<kMeasure>(v, w, i, r, d, s));
     });
   });
   return gain.value();
 }
 
 // D.3.3: coefficients significant before this bit-plane; context by Table D.4.
-template <class Symbols>
+template <bool kMeasure, class Symbols>
 double refinement_pass_impl(const BlockView v, int plane, Symbols s) {
   const PlaneDistortion d(plane + v.fine_bits);
   DistortionSum gain(plane + v.fine_bits, v.fine_bits);
@@ -105,7 +111,7 @@ double refinement_pass_impl(const BlockView v, int plane, Symbols s) {
       if (!(due & (1u << r))) return;
       s.decision(bit_at(v.magnitude[i], plane), refinement_context(word, r));
       refined |= column::refined(r);
-      gain.add_units(d.refinement_units(v.fine[i]));
+      if constexpr (kMeasure) gain.add_units(d.refinement_units(v.fine[i]));
     });
     *w = word | refined;
   });
@@ -124,29 +130,34 @@ inline int first_one_in_column(const BlockView& v, std::ptrdiff_t i, int plane) 
 // The arithmetic-coded passes work on a local copy of the coder (and of the view) that the
 // compiler can keep in registers for the whole pass (see MqEncoder::byte_out). `flatten` makes
 // sure everything is inlined early enough for that to happen.
+template <bool kMeasure>
 [[gnu::flatten]] double significance_pass(const BlockView& v, int plane, const ZeroCodingTable& zc, ContextSet& cx, MqEncoder& mq) {
   MqEncoder coder = mq;
-  const double gain = significance_pass_impl(BlockView(v), plane, zc, MqSymbols{coder, cx});
+  const double gain = significance_pass_impl<kMeasure>(BlockView(v), plane, zc, MqSymbols{coder, cx});
   mq = coder;
   return gain;
 }
 
+template <bool kMeasure>
 double significance_pass_raw(const BlockView& v, int plane, RawWriter& raw) {
-  return significance_pass_impl(BlockView(v), plane, kZeroCodingLlLh, RawSymbols{raw});
+  return significance_pass_impl<kMeasure>(BlockView(v), plane, kZeroCodingLlLh, RawSymbols{raw});
 }
 
+template <bool kMeasure>
 [[gnu::flatten]] double refinement_pass(const BlockView& v, int plane, ContextSet& cx, MqEncoder& mq) {
   MqEncoder coder = mq;
-  const double gain = refinement_pass_impl(BlockView(v), plane, MqSymbols{coder, cx});
+  const double gain = refinement_pass_impl<kMeasure>(BlockView(v), plane, MqSymbols{coder, cx});
   mq = coder;
   return gain;
 }
 
+template <bool kMeasure>
 double refinement_pass_raw(const BlockView& v, int plane, RawWriter& raw) {
-  return refinement_pass_impl(BlockView(v), plane, RawSymbols{raw});
+  return refinement_pass_impl<kMeasure>(BlockView(v), plane, RawSymbols{raw});
 }
 
 // D.3.4: everything the significance pass left, with run-length coding of quiet stripe columns.
+template <bool kMeasure>
 [[gnu::flatten]] double cleanup_pass(const BlockView& view, int plane, const ZeroCodingTable& zc, ContextSet& cx, MqEncoder& coder) {
   const BlockView v = view;
   MqEncoder mq = coder;
@@ -174,7 +185,7 @@ double refinement_pass_raw(const BlockView& v, int plane, RawWriter& raw) {
         mq.encode(1, cx[kRunLengthContext]);
         mq.encode(r >> 1, cx[kUniformContext]);
         mq.encode(r & 1, cx[kUniformContext]);
-        gain.add(become_significant(v, w, top + r * v.stride, r, d, s));
+        add_gain<kMeasure>(gain, become_significant<kMeasure>(v, w, top + r * v.stride, r, d, s));
         ++r;
       }
     }
@@ -183,12 +194,23 @@ double refinement_pass_raw(const BlockView& v, int plane, RawWriter& raw) {
       if (word & (column::self(row) | column::visited(row))) return;
       const int bit = bit_at(v.magnitude[i], plane);
       mq.encode(bit, cx[zc[(word >> (3 * row)) & column::kNeighbourhood]]);
-      if (bit) gain.add(become_significant(v, w, i, row, d, s));
+      if (bit) add_gain<kMeasure>(gain, become_significant<kMeasure>(v, w, i, row, d, s));
     });
     *w &= ~column::kVisitedAll;
   });
   coder = mq;
   return gain.value();
 }
+
+template double significance_pass<true>(const BlockView&, int, const ZeroCodingTable&, ContextSet&, MqEncoder&);
+template double significance_pass<false>(const BlockView&, int, const ZeroCodingTable&, ContextSet&, MqEncoder&);
+template double significance_pass_raw<true>(const BlockView&, int, RawWriter&);
+template double significance_pass_raw<false>(const BlockView&, int, RawWriter&);
+template double refinement_pass<true>(const BlockView&, int, ContextSet&, MqEncoder&);
+template double refinement_pass<false>(const BlockView&, int, ContextSet&, MqEncoder&);
+template double refinement_pass_raw<true>(const BlockView&, int, RawWriter&);
+template double refinement_pass_raw<false>(const BlockView&, int, RawWriter&);
+template double cleanup_pass<true>(const BlockView&, int, const ZeroCodingTable&, ContextSet&, MqEncoder&);
+template double cleanup_pass<false>(const BlockView&, int, const ZeroCodingTable&, ContextSet&, MqEncoder&);
 
 }  // namespace codec::t1

@@ -53,6 +53,12 @@ struct StopRule {
   double weight = 1;
 };
 
+// Whether the passes measure the distortion decrease they buy (PassInfo::distortion_decrease).
+// Rate control and the StopRule need it; an encode that keeps every pass (lossless, or lossy with
+// no rate or quality target) does not, and skipping it takes some 6 % off tier-1. Skipped, every
+// pass reports 0 (the energy is still given); the codeword is the same either way.
+enum class Distortion { Measured, Skipped };
+
 // Tier-1 (EBCOT) coding of one code-block, T.800 Annex D. `coefficients` holds width * height
 // quantisation indices row by row, sign and magnitude, each magnitude below
 // 2^magnitude_bitplanes (Mb, at most 31). Any width and height >= 1 are accepted (edge blocks).
@@ -89,9 +95,10 @@ struct FloatBlock {
 
 // encode_block on a block in place. Mb may be 31 when the caller learns the bit-planes from the
 // result (EncodedBlock::bit_planes) and sets missing_msbs itself.
+// A StopRule needs the distortion: Skipped with a stop rule is an error.
 EncodedBlock encode_block(const IntegerBlock& block, Orientation o, int magnitude_bitplanes, BlockStyle style,
-                          StopRule stop = {});
+                          StopRule stop = {}, Distortion distortion = Distortion::Measured);
 EncodedBlock encode_block(const FloatBlock& block, Orientation o, int magnitude_bitplanes, BlockStyle style,
-                          StopRule stop = {});
+                          StopRule stop = {}, Distortion distortion = Distortion::Measured);
 
 }  // namespace codec::t1
