@@ -217,7 +217,7 @@ int main(int argc, char** argv) {
   app.add_option("--ratio", ratio, "lossy: compression ratios as opj_compress -r, one per layer (R[,R...], decreasing)");
   app.add_option("--psnr", psnr, "lossy: PSNR targets in dB, one per layer (DB[,DB...])");
   app.add_option("--size", size, "lossy: whole-file size in bytes");
-  app.add_option("--dwt", dwt, "where the 9/7 DWT runs: cpu, gpu or auto (default auto: GPU if a context can be made)");
+  app.add_option("--dwt", dwt, "where the 9/7 DWT runs: cpu, gpu or auto (default auto: a hardware GPU where it is faster for the image size, never a software renderer)");
   app.add_option("--base-step", base_step, "lossy: quantisation step relative to the sample range (default 1/2048)");
   app.add_option("-O", jasper, "JasPer-style option key=value: rate, numrlvls, mode=int|real, tilewidth, tileheight, cblkwidth, cblkheight, prg, ilyrrates");
   app.add_option("--guard-bits", guard_bits, "guard bits (default 2 lossless, 1 lossy)");

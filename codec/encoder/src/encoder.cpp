@@ -5,13 +5,11 @@
 #include "codec/codestream/codestream_writer.h"
 #include "codec/codestream/jp2.h"
 #include "codec/codestream/main_header.h"
-#include "codec/encoder/reconstruction.h"
+#include "codec/encoder/rate_control.h"
 #include "codec/encoder/tile_coder.h"
 #include "codec/structure/error.h"
 #include "codec/tier2/packet_writer.h"
 #include "codec/tier2/progression.h"
-#include "codec/rate/pcrd.h"
-#include "codec/rate/rate_allocator.h"
 #include "dwt_cpu/cpu_backend.h"
 #include "codec/encoder/dwt_choice.h"
 
@@ -78,15 +76,38 @@ cs::MainHeader main_header(const SourceImage& image, const EncodeParams& params,
 
 t2::Order to_t2(Progression p) { return static_cast<t2::Order>(static_cast<int>(p)); }
 
-// Express missing bit-planes against the guard bits the header states.
-void apply_guard_bits(CodedTile& coded, const std::vector<int>& plan_guard, const std::vector<int>& final_guard) {
-  for (const TileComponent& tc : coded.tile.components)
-    for (const Resolution& res : tc.resolutions)
-      for (const Precinct& p : res.precincts)
-        for (const PrecinctBand& pb : p.bands)
-          for (const CodeBlock& cb : pb.blocks)
-            coded.blocks[cb.index].missing_msbs += final_guard[static_cast<std::size_t>(tc.component)] -
-                                                   plan_guard[static_cast<std::size_t>(tc.component)];
+// The guard bits the header states, per component: the plan's, or more where some tile's
+// coefficients need them; every block's missing bit-planes are then counted against those.
+std::vector<int> settle_guard_bits(std::vector<CodedTile>& tiles, const CodingPlan& plan) {
+  std::vector<int> plan_guard;
+  for (const auto& q : plan.quantization) plan_guard.push_back(q.guard_bits);
+  std::vector<int> guard = plan_guard;
+  for (const CodedTile& tile : tiles)
+    for (std::size_t c = 0; c < guard.size(); ++c) guard[c] = std::max(guard[c], tile.guard_bits_needed[c]);
+  for (CodedTile& coded : tiles)
+    for (const TileComponent& tc : coded.tile.components)
+      for (const Resolution& res : tc.resolutions)
+        for (const Precinct& p : res.precincts)
+          for (const PrecinctBand& pb : p.bands)
+            for (const CodeBlock& cb : pb.blocks)
+              coded.blocks[cb.index].missing_msbs +=
+                  guard[static_cast<std::size_t>(tc.component)] - plan_guard[static_cast<std::size_t>(tc.component)];
+  return guard;
+}
+
+// Pass skipping needs a target to predict from: each tile gets its share of the last layer's
+// bytes (less a little for the headers), or of the squared error its PSNR allows (less a fifth:
+// the rate-distortion estimate runs optimistic, so the PSNR loop aims below the goal). The
+// prediction only sets where blocks stop, with a wide margin. None without targets.
+Tier1Target tier1_target(const Tile& tile, const EncodeParams& params, double samples, double peak) {
+  if (!params.skip_passes || params.lossless || params.layers.empty()) return {};
+  double tile_samples = 0;
+  for (const TileComponent& tc : tile.components) tile_samples += static_cast<double>(tc.rect.width() * tc.rect.height());
+  const double share = tile_samples / std::max(1.0, samples);
+  const LayerTarget& last = params.layers.back();
+  if (last.kind == LayerTarget::Kind::Bytes) return {Tier1Target::Kind::Bytes, 0.97 * last.value * share};
+  const double goal = samples * peak * peak * std::pow(10.0, -last.value / 10.0);
+  return {Tier1Target::Kind::Distortion, 0.8 * goal * share};
 }
 
 // Tier-2: every packet of the tile in progression order. `passes[b]` lists block b's cumulative
@@ -136,9 +157,9 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); };
   EncodeReport report;
+  // Stage 0: the plan, one set of worker threads for every stage, and where the DWT runs.
   const auto setup_start = Clock::now();
   const CodingPlan plan = make_plan(image, params);
-  // One set of worker threads for every stage: the DWT, the component transform, tier-1.
   dwt_cpu::ThreadPool pool(params.threads);
   report.threads = pool.size();
   double samples = 0;
@@ -150,56 +171,30 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
   report.times.shader_compile = dwt.shader_compile_ms;
   dwt_cpu::CpuBackend reversible_dwt(pool);
 
-  std::vector<CodedTile> tiles;
-  const int count = plan.grid.tile_count();
-  tiles.reserve(static_cast<std::size_t>(count));
-  std::vector<int> plan_guard, final_guard;
-  for (const auto& q : plan.quantization) plan_guard.push_back(q.guard_bits);
-  final_guard = plan_guard;
-  const std::size_t all_blocks = params.progress ? count_code_blocks(plan) : 0;
-  report.times.setup = since(setup_start) - report.times.gl_context - report.times.shader_compile;
-  std::size_t blocks_before = 0;
-  // Pass skipping needs a target to predict from: each tile gets its share of the last layer's
-  // bytes (less a little for the headers), or of the squared error its PSNR allows (less a fifth:
-  // the rate-distortion estimate runs optimistic, so the PSNR loop aims below the goal). The
-  // prediction only sets where blocks stop, with a wide margin.
-  const bool skipping = params.skip_passes && !params.lossless && !params.layers.empty();
   int peak_bits = 0;
   for (const SourceComponent& c : image.components) peak_bits = std::max(peak_bits, c.precision);
   const double peak = std::ldexp(1.0, peak_bits) - 1;
-  auto tile_target = [&](const Tile& tile) {
-    Tier1Target target;
-    if (!skipping) return target;
-    double tile_samples = 0;
-    for (const TileComponent& tc : tile.components) tile_samples += static_cast<double>(tc.rect.width() * tc.rect.height());
-    const double share = tile_samples / std::max(1.0, samples);
-    const LayerTarget& last = params.layers.back();
-    if (last.kind == LayerTarget::Kind::Bytes) {
-      target = {Tier1Target::Kind::Bytes, 0.97 * last.value * share};
-    } else {
-      const double goal = samples * peak * peak * std::pow(10.0, -last.value / 10.0);
-      target = {Tier1Target::Kind::Distortion, 0.8 * goal * share};
-    }
-    return target;
-  };
+  report.times.setup = since(setup_start) - report.times.gl_context - report.times.shader_compile;
+
+  // Stages 1-4, tile by tile: samples in, level shift and component transform, DWT, quantisation
+  // and tier-1.
+  std::vector<CodedTile> tiles;
+  const int count = plan.grid.tile_count();
+  tiles.reserve(static_cast<std::size_t>(count));
+  const std::size_t all_blocks = params.progress ? count_code_blocks(plan) : 0;
+  std::size_t blocks_before = 0;
   for (int t = 0; t < count; ++t) {
-    const Tier1Target target = tile_target(build_tile(plan.grid, plan.sampling, plan.styles, t));
+    const Tier1Target target = tier1_target(build_tile(plan.grid, plan.sampling, plan.styles, t), params, samples, peak);
     tiles.push_back(code_tile(image, consumable, plan, params, t, *dwt.backend, reversible_dwt, pool, report.times, target,
                               blocks_before, all_blocks));
     blocks_before += tiles.back().blocks.size();
-    for (std::size_t c = 0; c < final_guard.size(); ++c)
-      final_guard[c] = std::max(final_guard[c], tiles.back().guard_bits_needed[c]);
   }
-  for (CodedTile& tile : tiles) apply_guard_bits(tile, plan_guard, final_guard);
+  const std::vector<int> guard_bits = settle_guard_bits(tiles, plan);
 
+  // Stage 5: rate control, choosing each layer's passes; without targets every pass in one layer.
   const int layers = params.layers.empty() ? 1 : static_cast<int>(params.layers.size());
-  // Cumulative passes per layer for every block of every tile; by default everything in layer 0.
-  std::vector<std::vector<std::vector<int>>> passes(tiles.size());
-  for (std::size_t t = 0; t < tiles.size(); ++t)
-    for (const auto& eb : tiles[t].blocks) passes[t].push_back(std::vector<int>(static_cast<std::size_t>(layers), static_cast<int>(eb.passes.size())));
-
-  const cs::MainHeader header = main_header(image, params, plan, final_guard, layers);
-  auto assemble = [&]() {
+  const cs::MainHeader header = main_header(image, params, plan, guard_bits, layers);
+  const Assembler assemble = [&](const LayerPasses& passes) {
     cs::CodestreamWriter writer(header);
     for (std::size_t t = 0; t < tiles.size(); ++t)
       writer.add_tile_part(static_cast<unsigned>(tiles[t].tile.index), 0, 1, tile_body(tiles[t], params, passes[t], layers));
@@ -207,133 +202,14 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
     if (format == FileFormat::Jp2) return cs::wrap_jp2(codestream, cs::jp2_header_for(header.siz));
     return codestream;
   };
+  const LayerPasses passes = params.layers.empty()
+                                 ? every_pass(tiles, layers)
+                                 : control_rate(tiles, RateControlInputs{image, plan, params, samples, peak, pool},
+                                                assemble, report);
 
-  const auto rate_start = Clock::now();
-  double recode_ms = 0;
-  // Rate control; with pass skipping, again after recoding blocks the first allocation found
-  // stopped too soon (at most twice: the recoded blocks have every pass).
-  for (int recode_round = 0; !params.layers.empty(); ++recode_round) {
-    // Rate control over every block of the image: one slope threshold per layer (PCRD-opt).
-    std::vector<std::vector<rate::HullPoint>> hulls;
-    double energy = 0;
-    for (const CodedTile& tile : tiles)
-      for (std::size_t b = 0; b < tile.blocks.size(); ++b) {
-        hulls.push_back(rate::convex_hull(tile.blocks[b].passes, tile.jobs[b].weight));
-        energy += tile.blocks[b].energy * tile.jobs[b].weight;
-      }
-    const rate::RateAllocator allocator(hulls);
-    auto apply = [&](const std::vector<std::vector<int>>& per_layer) {  // [layer][global block]
-      std::size_t g = 0;
-      for (std::size_t t = 0; t < tiles.size(); ++t)
-        for (std::size_t b = 0; b < tiles[t].blocks.size(); ++b, ++g)
-          for (int l = 0; l < layers; ++l) {
-            passes[t][b][static_cast<std::size_t>(l)] = per_layer[static_cast<std::size_t>(l)][g];
-          }
-    };
-    if (params.layers[0].kind == LayerTarget::Kind::Psnr) {
-      // Select by estimated distortion, then rebuild the image a decoder would see, measure its
-      // true error and rescale the estimate's target until the measured PSNR lands in
-      // [target, target + 0.25 dB]. The estimate runs about 10 % optimistic (the 9/7 is not
-      // orthogonal), so a couple of rounds suffice.
-      dwt_cpu::CpuBackend inverse_dwt(pool);
-      std::vector<std::vector<int>> per_layer(static_cast<std::size_t>(layers), std::vector<int>(hulls.size(), 0));
-      for (int l = 0; l < layers; ++l) {
-        const double goal = samples * peak * peak * std::pow(10.0, -params.layers[static_cast<std::size_t>(l)].value / 10.0);
-        const double floor_goal = goal * std::pow(10.0, -0.025);
-        double aim = goal;
-        std::vector<int> best;
-        double best_error = -1;
-        for (int round = 0; round < 8; ++round) {
-          rate::Selection selection = allocator.for_distortion(energy, aim);
-          std::vector<int> chosen = selection.passes;
-          if (l > 0)
-            for (std::size_t g = 0; g < chosen.size(); ++g) chosen[g] = std::max(chosen[g], per_layer[static_cast<std::size_t>(l - 1)][g]);
-          per_layer[static_cast<std::size_t>(l)] = chosen;
-          apply(per_layer);
-          const double error = rebuilt_squared_error(image, plan, params, tiles, passes, l, inverse_dwt, pool);
-          // Keep the cheapest selection that meets the goal.
-          if (error <= goal && (best_error < 0 || error > best_error)) best = chosen, best_error = error;
-          if (error <= goal && error >= floor_goal) break;
-          // Measured error scales with the aimed one; aim a touch low when over the goal.
-          const double correction = goal / std::max(error, 1e-9) * (error > goal ? 0.98 : 1.0);
-          aim *= std::clamp(correction, 0.5, 2.0);
-        }
-        if (best_error < 0) {  // never met: everything coded is the best there is
-          best.assign(hulls.size(), 0);
-          for (std::size_t g = 0; g < hulls.size(); ++g) best[g] = hulls[g].empty() ? 0 : hulls[g].back().passes;
-        }
-        per_layer[static_cast<std::size_t>(l)] = best;
-      }
-      apply(per_layer);
-    } else {
-      // Byte targets for the whole file: headers and packet headers included. Bisect a common
-      // scale of the data budgets until the file fits its last target, as full as it gets.
-      const auto target = static_cast<std::size_t>(params.layers.back().value);
-      std::vector<std::vector<int>> none(static_cast<std::size_t>(layers), std::vector<int>(hulls.size(), 0));
-      apply(none);
-      const std::size_t overhead = assemble().size();
-      if (overhead > target)
-        throw EncodeError("the byte target " + std::to_string(target) + " is below the " + std::to_string(overhead) +
-                          " bytes the headers alone take");
-      auto plan_for = [&](double scale) {
-        std::vector<std::size_t> budgets;
-        for (const LayerTarget& t : params.layers)
-          budgets.push_back(static_cast<std::size_t>(std::max(0.0, (t.value - static_cast<double>(overhead)) * scale)));
-        return allocator.layers(budgets);
-      };
-      // Packet headers grow with the data, so the scale ends a little below 1. Stop once the file is
-      // within 0.005 % of the target (or a few bytes): every byte left unspent is quality given
-      // away, and a trial assembly costs little next to tier-1.
-      double lo = 0, hi = 1.05;
-      std::vector<std::vector<int>> best = none;
-      std::size_t best_size = overhead;
-      const std::size_t close_enough = target - std::max<std::size_t>(target / 20000, 4);
-      for (int iteration = 0; iteration < 40 && best_size < close_enough; ++iteration) {
-        const double mid = 0.5 * (lo + hi);
-        const auto candidate = plan_for(mid);
-        apply(candidate);
-        const std::size_t size = assemble().size();
-        if (size <= target) {
-          lo = mid;
-          if (size >= best_size) best_size = size, best = candidate;
-        } else {
-          hi = mid;
-        }
-      }
-      apply(best);
-    }
-    // Pass skipping's check: a block that stopped early, and that the last layer now takes any
-    // pass of its last coded bit-plane from, may have been stopped too soon. Code those in full
-    // and allocate again; the rest stopped at least a whole bit-plane past the cut.
-    std::vector<std::pair<std::size_t, std::size_t>> starved;  // (tile, block)
-    for (std::size_t t = 0; t < tiles.size(); ++t)
-      for (std::size_t b = 0; b < tiles[t].blocks.size(); ++b) {
-        const t1::EncodedBlock& eb = tiles[t].blocks[b];
-        // The last coded bit-plane's first pass: its cleanup when only the top plane was coded.
-        const int coded = static_cast<int>(eb.passes.size());
-        const int last_plane_start = coded == 1 ? 0 : coded - 3;
-        if (eb.stopped_early && passes[t][b].back() > last_plane_start) starved.emplace_back(t, b);
-      }
-    if (!starved.empty() && recode_round < 2) {
-      report.recoded_blocks += starved.size();
-      const auto recode_start = Clock::now();
-      pool.parallel_for(starved.size(), [&](std::size_t k) {
-        CodedTile& tile = tiles[starved[k].first];
-        const std::size_t b = starved[k].second;
-        t1::EncodedBlock eb = code_block(tile, tile.jobs[b], params, tile.block_magnitude_bitplanes[b]);
-        eb.missing_msbs = tile.blocks[b].missing_msbs;  // unchanged: the same bit-planes
-        tile.blocks[b] = std::move(eb);
-      });
-      const double ms = since(recode_start);
-      recode_ms += ms;
-      report.times.tier1 += ms;
-      continue;
-    }
-    break;
-  }
-  report.times.rate_control = since(rate_start) - recode_ms;
+  // Stage 6: tier-2 and the codestream.
   const auto tier2_start = Clock::now();
-  std::vector<std::uint8_t> bytes = assemble();
+  std::vector<std::uint8_t> bytes = assemble(passes);
   report.times.tier2 = since(tier2_start);
   if (report_out) *report_out = std::move(report);
   return bytes;

@@ -1,0 +1,175 @@
+#include "codec/encoder/rate_control.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "codec/encoder/reconstruction.h"
+#include "codec/rate/hull.h"
+#include "codec/rate/rate_allocator.h"
+#include "codec/structure/error.h"
+#include "dwt_cpu/cpu_backend.h"
+
+namespace codec {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+// A selection as the allocator gives it, per layer over every block of the image in tile order
+// ([layer][global block]), spread back over the tiles.
+LayerPasses per_tile(const std::vector<CodedTile>& tiles, const std::vector<std::vector<int>>& per_layer) {
+  LayerPasses passes(tiles.size());
+  std::size_t g = 0;
+  for (std::size_t t = 0; t < tiles.size(); ++t)
+    for (std::size_t b = 0; b < tiles[t].blocks.size(); ++b, ++g) {
+      std::vector<int>& block = passes[t].emplace_back();
+      for (const std::vector<int>& layer : per_layer) block.push_back(layer[g]);
+    }
+  return passes;
+}
+
+// PSNR targets: select by estimated distortion, then rebuild the image a decoder would see,
+// measure its true error and rescale the estimate's target until the measured PSNR lands in
+// [target, target + 0.25 dB]. The estimate runs about 10 % optimistic (the 9/7 is not orthogonal),
+// so a couple of rounds suffice.
+LayerPasses select_for_psnr(const std::vector<CodedTile>& tiles, const rate::RateAllocator& allocator,
+                            const std::vector<std::vector<rate::HullPoint>>& hulls, double energy,
+                            const RateControlInputs& in) {
+  const EncodeParams& params = in.params;
+  const std::size_t layers = params.layers.size();
+  dwt_cpu::CpuBackend inverse_dwt(in.pool);
+  std::vector<std::vector<int>> per_layer(layers, std::vector<int>(hulls.size(), 0));
+  for (std::size_t l = 0; l < layers; ++l) {
+    const double goal = in.samples * in.peak * in.peak * std::pow(10.0, -params.layers[l].value / 10.0);
+    const double floor_goal = goal * std::pow(10.0, -0.025);
+    double aim = goal;
+    std::vector<int> best;
+    double best_error = -1;
+    for (int round = 0; round < 8; ++round) {
+      std::vector<int> chosen = allocator.for_distortion(energy, aim).passes;
+      if (l > 0)
+        for (std::size_t g = 0; g < chosen.size(); ++g) chosen[g] = std::max(chosen[g], per_layer[l - 1][g]);
+      per_layer[l] = chosen;
+      const double error = rebuilt_squared_error(in.image, in.plan, params, tiles, per_tile(tiles, per_layer),
+                                                 static_cast<int>(l), inverse_dwt, in.pool);
+      // Keep the cheapest selection that meets the goal.
+      if (error <= goal && (best_error < 0 || error > best_error)) best = chosen, best_error = error;
+      if (error <= goal && error >= floor_goal) break;
+      // Measured error scales with the aimed one; aim a touch low when over the goal.
+      const double correction = goal / std::max(error, 1e-9) * (error > goal ? 0.98 : 1.0);
+      aim *= std::clamp(correction, 0.5, 2.0);
+    }
+    if (best_error < 0) {  // never met: everything coded is the best there is
+      best.assign(hulls.size(), 0);
+      for (std::size_t g = 0; g < hulls.size(); ++g) best[g] = hulls[g].empty() ? 0 : hulls[g].back().passes;
+    }
+    per_layer[l] = best;
+  }
+  return per_tile(tiles, per_layer);
+}
+
+// Byte targets for the whole file, headers and packet headers included: bisect a common scale of
+// the layers' data budgets until the file fits the last target, as full as it gets.
+LayerPasses select_for_bytes(const std::vector<CodedTile>& tiles, const rate::RateAllocator& allocator,
+                             std::size_t block_count, const RateControlInputs& in, const Assembler& assemble) {
+  const EncodeParams& params = in.params;
+  const auto target = static_cast<std::size_t>(params.layers.back().value);
+  const std::vector<std::vector<int>> none(params.layers.size(), std::vector<int>(block_count, 0));
+  const std::size_t overhead = assemble(per_tile(tiles, none)).size();
+  if (overhead > target)
+    throw EncodeError("the byte target " + std::to_string(target) + " is below the " + std::to_string(overhead) +
+                      " bytes the headers alone take");
+  auto plan_for = [&](double scale) {
+    std::vector<std::size_t> budgets;
+    for (const LayerTarget& t : params.layers)
+      budgets.push_back(static_cast<std::size_t>(std::max(0.0, (t.value - static_cast<double>(overhead)) * scale)));
+    return allocator.layers(budgets);
+  };
+  // Packet headers grow with the data, so the scale ends a little below 1. Stop once the file is
+  // within 0.005 % of the target (or a few bytes): every byte left unspent is quality given away,
+  // and a trial assembly costs little next to tier-1.
+  double lo = 0, hi = 1.05;
+  std::vector<std::vector<int>> best = none;
+  std::size_t best_size = overhead;
+  const std::size_t close_enough = target - std::max<std::size_t>(target / 20000, 4);
+  for (int iteration = 0; iteration < 40 && best_size < close_enough; ++iteration) {
+    const double mid = 0.5 * (lo + hi);
+    auto candidate = plan_for(mid);
+    const std::size_t size = assemble(per_tile(tiles, candidate)).size();
+    if (size <= target) {
+      lo = mid;
+      if (size >= best_size) best_size = size, best = std::move(candidate);
+    } else {
+      hi = mid;
+    }
+  }
+  return per_tile(tiles, best);
+}
+
+// Pass skipping's check: a block that stopped early, and that the last layer takes any pass of its
+// last coded bit-plane from, may have been stopped too soon. The rest stopped at least a whole
+// bit-plane past the cut. Returns (tile, block) pairs.
+std::vector<std::pair<std::size_t, std::size_t>> starved_blocks(const std::vector<CodedTile>& tiles,
+                                                                const LayerPasses& passes) {
+  std::vector<std::pair<std::size_t, std::size_t>> starved;
+  for (std::size_t t = 0; t < tiles.size(); ++t)
+    for (std::size_t b = 0; b < tiles[t].blocks.size(); ++b) {
+      const t1::EncodedBlock& eb = tiles[t].blocks[b];
+      // The last coded bit-plane's first pass: its cleanup when only the top plane was coded.
+      const int coded = static_cast<int>(eb.passes.size());
+      const int last_plane_start = coded == 1 ? 0 : coded - 3;
+      if (eb.stopped_early && passes[t][b].back() > last_plane_start) starved.emplace_back(t, b);
+    }
+  return starved;
+}
+
+}  // namespace
+
+LayerPasses every_pass(const std::vector<CodedTile>& tiles, int layers) {
+  LayerPasses passes(tiles.size());
+  for (std::size_t t = 0; t < tiles.size(); ++t)
+    for (const t1::EncodedBlock& eb : tiles[t].blocks)
+      passes[t].push_back(std::vector<int>(static_cast<std::size_t>(layers), static_cast<int>(eb.passes.size())));
+  return passes;
+}
+
+LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs& in, const Assembler& assemble,
+                         EncodeReport& report) {
+  const auto start = Clock::now();
+  double recode_ms = 0;
+  LayerPasses passes;
+  for (int round = 0;; ++round) {
+    std::vector<std::vector<rate::HullPoint>> hulls;
+    double energy = 0;
+    for (const CodedTile& tile : tiles)
+      for (std::size_t b = 0; b < tile.blocks.size(); ++b) {
+        hulls.push_back(rate::convex_hull(tile.blocks[b].passes, tile.jobs[b].weight));
+        energy += tile.blocks[b].energy * tile.jobs[b].weight;
+      }
+    const rate::RateAllocator allocator(hulls);
+    passes = in.params.layers[0].kind == LayerTarget::Kind::Psnr
+                 ? select_for_psnr(tiles, allocator, hulls, energy, in)
+                 : select_for_bytes(tiles, allocator, hulls.size(), in, assemble);
+    const auto starved = starved_blocks(tiles, passes);
+    if (starved.empty() || round == 2) break;  // recoded blocks have every pass: twice is enough
+    report.recoded_blocks += starved.size();
+    const auto recode_start = Clock::now();
+    in.pool.parallel_for(starved.size(), [&](std::size_t k) {
+      CodedTile& tile = tiles[starved[k].first];
+      const std::size_t b = starved[k].second;
+      t1::EncodedBlock eb = code_block(tile, tile.jobs[b], in.params, tile.block_magnitude_bitplanes[b]);
+      eb.missing_msbs = tile.blocks[b].missing_msbs;  // unchanged: the same bit-planes
+      tile.blocks[b] = std::move(eb);
+    });
+    const double ms = ms_since(recode_start);
+    recode_ms += ms;
+    report.times.tier1 += ms;
+  }
+  report.times.rate_control = ms_since(start) - recode_ms;
+  return passes;
+}
+
+}  // namespace codec
