@@ -34,6 +34,7 @@ void CodestreamWriter::add_tile_part(unsigned tile_index, unsigned part_index, u
   if (body.size() > 0xFFFFFFFFu - 14)
     throw CodestreamError(who + ": " + std::to_string(body.size()) + " bytes of packet data overflow Psot");
 
+  bytes_.reserve(bytes_.size() + body.size() + 16);  // SOT, SOD, the body and EOC: one allocation
   ByteWriter out(bytes_);
   const std::size_t sot = write_sot(out, Sot{tile_index, part_index, num_parts});
   write_sod(out);

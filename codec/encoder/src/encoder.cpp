@@ -143,7 +143,15 @@ std::vector<std::uint8_t> tile_body(const CodedTile& coded, const EncodeParams& 
     }
     geometry.push_back(std::move(cg));
   }
+  // Room for every byte the packets carry, so that the body is not copied as it grows; headers
+  // take a few bytes a block at most.
+  std::size_t data_bytes = 0;
+  for (std::size_t b = 0; b < coded.blocks.size(); ++b) {
+    const int kept = passes[b].empty() ? 0 : passes[b].back();
+    if (kept > 0) data_bytes += coded.blocks[b].passes[static_cast<std::size_t>(kept) - 1].length + 8;
+  }
   std::vector<std::uint8_t> body;
+  body.reserve(data_bytes + 4096);
   std::uint16_t sequence = 0;
   for (const t2::PacketId& id :
        t2::progression(to_t2(params.order), layers, tile.rect.x0, tile.rect.y0, tile.rect.x1, tile.rect.y1, geometry))

@@ -103,7 +103,7 @@ void PrecinctPacketWriter::write_packet(int layer, bool sop, bool eph, std::uint
     out.push_back(static_cast<std::uint8_t>(packet_sequence_number & 0xFF));
   }
 
-  std::vector<std::uint8_t> body;
+  body_.clear();
   HeaderBitWriter header(out);
   // B.10.3: a leading 0 announces an empty packet and ends the header there. Sent whenever no
   // block adds a pass: it is the shortest header, and leaves the tag trees untouched for later.
@@ -116,17 +116,21 @@ void PrecinctPacketWriter::write_packet(int layer, bool sop, bool eph, std::uint
       for (int y = 0; y < band.rows; ++y)
         for (int x = 0; x < band.cols; ++x)
           write_block_header(band.blocks[static_cast<std::size_t>(y) * band.cols + x], state_[b], x, y, layer,
-                             header, body);
+                             header);
     }
   }
   header.flush();
   if (eph) append_marker(out, 0x92);  // A.8.2
-  out.insert(out.end(), body.begin(), body.end());
+  // The body: the blocks' bytes straight from their codewords, in the header's order.
+  std::size_t body_bytes = 0;
+  for (const auto& piece : body_) body_bytes += piece.size();
+  out.reserve(out.size() + body_bytes);
+  for (const auto& piece : body_) out.insert(out.end(), piece.begin(), piece.end());
   ++next_layer_;
 }
 
 void PrecinctPacketWriter::write_block_header(const CodeBlockCoding& plan, BandState& band, int x, int y, int layer,
-                                              HeaderBitWriter& header, std::vector<std::uint8_t>& body) {
+                                              HeaderBitWriter& header) {
   BlockState& st = band.blocks[static_cast<std::size_t>(y) * band.inclusion.width() + x];
   const int first_pass = st.passes_sent;
   const int added = plan.cumulative_passes[static_cast<std::size_t>(layer)] - first_pass;
@@ -160,8 +164,7 @@ void PrecinctPacketWriter::write_block_header(const CodeBlockCoding& plan, BandS
   // The body carries the same bytes, in the same block order as the header.
   const std::size_t begin = first_pass == 0 ? 0 : passes[static_cast<std::size_t>(first_pass) - 1].length;
   const std::size_t end = passes[static_cast<std::size_t>(first_pass + added) - 1].length;
-  const auto& data = plan.encoded->data;
-  body.insert(body.end(), data.begin() + static_cast<std::ptrdiff_t>(begin), data.begin() + static_cast<std::ptrdiff_t>(end));
+  body_.emplace_back(plan.encoded->data.data() + begin, end - begin);
 
   st.included = true;
   st.lblock = lblock;

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "codec/t1/block_encoder.h"
@@ -51,10 +52,12 @@ class PrecinctPacketWriter {
 
   bool packet_is_empty(int layer) const;
   void write_block_header(const CodeBlockCoding& plan, BandState& band, int x, int y, int layer,
-                          HeaderBitWriter& header, std::vector<std::uint8_t>& body);
+                          HeaderBitWriter& header);
 
   std::vector<PrecinctBand> bands_;
   std::vector<BandState> state_;
+  // The packet being written: each included block's new bytes, in header order (reused).
+  std::vector<std::span<const std::uint8_t>> body_;
   t1::BlockStyle style_;
   int layers_ = -1;  // from the plans; -1 while the precinct has no code-blocks
   int next_layer_ = 0;
