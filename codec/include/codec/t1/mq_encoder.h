@@ -67,9 +67,20 @@ class MqEncoder {
     const std::uint32_t upper = 0u - static_cast<std::uint32_t>(is_mps != (a_ < qe));  // all ones or zero
     c_ += qe & upper;
     a_ = (a_ & upper) | (qe & ~upper);
-    if (a_ & 0x8000) return;  // only an MPS can leave A >= 0x8000: no renormalisation, state kept
-    cx.packed = t.next[is_mps];
-    renormalize();
+    // Renormalise: shift A until bit 15 is set, none when it is (only an MPS can leave it so, and
+    // then the context keeps its state). Written without a branch on whether to renormalise, which
+    // mispredicts on about every LPS and every renormalising MPS; the only branch left is the
+    // rarer one for a byte to output.
+    const int shift = std::countl_zero(a_) - 16;  // A is below 2^16 and not 0
+    const std::uint32_t renormalising = 0u - static_cast<std::uint32_t>(shift != 0);
+    cx.packed = static_cast<std::uint16_t>((t.next[is_mps] & renormalising) | (cx.packed & ~renormalising));
+    if (shift >= ct_) [[unlikely]] {
+      renormalize(shift);
+      return;
+    }
+    a_ <<= shift;
+    c_ <<= shift;
+    ct_ -= shift;
   }
 
   // FLUSH (C.2.9): the shortest standard termination. A trailing 0xFF is dropped: the decoder's
@@ -90,9 +101,8 @@ class MqEncoder {
 
  private:
   // RENORME (C.2.7), shifting in one go up to the next byte boundary instead of bit by bit.
-  [[gnu::always_inline]] void renormalize() {
-    // A is in [1, 0x8000) here; "| 1" tells the compiler it is not 0 (no zero check needed).
-    int shift = std::countl_zero(a_ | 1u) - 16;  // shifts until bit 15 is set
+  // `shift`: the shifts that set bit 15 of A, at least CT of them.
+  [[gnu::always_inline]] void renormalize(int shift) {
     while (shift >= ct_) {
       a_ <<= ct_;
       c_ <<= ct_;
