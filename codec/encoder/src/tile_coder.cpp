@@ -144,7 +144,7 @@ void for_row_chunks(dwt_cpu::ThreadPool& pool, std::size_t height, Rows&& rows) 
 // components, through the RCT or ICT (G.2, G.3), in one pass over the source, by row chunks.
 // Lossless planes are integers; lossy ones floats, ready for the 9/7.
 struct TilePlanes {
-  std::vector<std::vector<std::int32_t>> integers;  // lossless
+  std::vector<imageio::SamplePlane> integers;  // lossless
   std::vector<FloatPlane> floats;                   // lossy
 };
 
@@ -165,7 +165,7 @@ bool can_take_source(const SourceImage* consumable, const CodingPlan& plan, cons
 // wholly inside them are dropped (MADV_DONTNEED; they would read as zeros, and nothing reads them
 // again), so the image's memory shrinks as its rows are converted.
 void release_rows(SourceImage& image, std::size_t component, std::size_t y0, std::size_t y1) {
-  std::vector<std::int32_t>& samples = image.components[component].samples;
+  imageio::SamplePlane& samples = image.components[component].samples;
   const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
   const auto begin = reinterpret_cast<std::uintptr_t>(samples.data() + y0 * static_cast<std::size_t>(image.width));
   const auto end = reinterpret_cast<std::uintptr_t>(samples.data() + y1 * static_cast<std::size_t>(image.width));
@@ -240,7 +240,7 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
     });
   }
   if (release_source)
-    for (SourceComponent& component : consumable->components) std::vector<std::int32_t>().swap(component.samples);
+    for (SourceComponent& component : consumable->components) imageio::SamplePlane().swap(component.samples);
   return out;
 }
 

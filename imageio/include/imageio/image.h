@@ -7,6 +7,8 @@
 
 #include "imageio/error.h"
 
+#include "imageio/plane_memory.h"
+
 namespace imageio {
 
 // An image in memory, whatever its file format or sample type.
@@ -47,7 +49,7 @@ struct PlanarImage {
   int height = 0;
   int channels = 0;
   int bits_per_sample = 0;
-  std::vector<std::vector<std::int32_t>> planes;
+  std::vector<SamplePlane> planes;
 };
 
 }  // namespace imageio

@@ -1,8 +1,38 @@
 #pragma once
 #include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace imageio {
+
+// An allocator whose elements start uninitialised, for planes that are written in full before they
+// are read: their pages are first touched by the stage that fills them (in parallel where it is
+// threaded), with no zero pass before.
+template <class T>
+struct UninitialisedAllocator : std::allocator<T> {
+  UninitialisedAllocator() = default;
+  template <class U>
+  UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
+  template <class U>
+  struct rebind {
+    using other = UninitialisedAllocator<U>;
+  };
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+// One plane of integer samples, row by row (PlanarImage, and the encoder's source components).
+using SamplePlane = std::vector<std::int32_t, UninitialisedAllocator<std::int32_t>>;
 
 // Asks the kernel to back the 2 MiB-aligned part of [data, data + bytes) with transparent huge
 // pages, before anything touches it. A 2048x2048 plane of 32-bit samples is 4096 ordinary pages:

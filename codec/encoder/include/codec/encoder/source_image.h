@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include "imageio/plane_memory.h"
+
 namespace imageio {
 struct Image;
 struct PlanarImage;
@@ -14,7 +16,7 @@ namespace codec {
 struct SourceComponent {
   int precision = 8;       // bits per sample, 1..16 here (the standard allows up to 38)
   bool is_signed = false;
-  std::vector<std::int32_t> samples;  // row-major, width * height
+  imageio::SamplePlane samples;  // row-major, width * height (written in full before it is read)
 };
 
 struct SourceImage {

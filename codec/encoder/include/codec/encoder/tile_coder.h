@@ -12,6 +12,7 @@
 #include "codec/t1/block_encoder.h"
 #include "dwt/backend.h"
 #include "dwt_cpu/thread_pool.h"
+#include "imageio/plane_memory.h"
 
 namespace codec {
 
@@ -30,24 +31,10 @@ struct ComponentQuantization {
   int magnitude_bitplanes(int exponent) const { return guard_bits + exponent - 1; }  // Mb, E-2
 };
 
-// An allocator whose elements start uninitialised, for planes that are written in full before they
-// are read: their pages are first touched by the stage that fills them (in parallel), with no zero
-// pass before, and while a given-up source image is released row by row the two never coexist.
-template <class T>
-struct UninitialisedAllocator : std::allocator<T> {
-  UninitialisedAllocator() = default;
-  template <class U>
-  UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
-  template <class U>
-  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <class U, class... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
-using FloatPlane = std::vector<float, UninitialisedAllocator<float>>;
+// Planes written in full before they are read start uninitialised (imageio::UninitialisedAllocator):
+// their pages are first touched by the stage that fills them, and while a given-up source image is
+// released row by row the two never coexist.
+using FloatPlane = std::vector<float, imageio::UninitialisedAllocator<float>>;
 
 // One code-block as tier-1 and rate control see it: where its indices lie, its band, its weight.
 struct BlockJob {
@@ -82,7 +69,7 @@ struct CodedTile {
   // Each tile-component's wavelet coefficients in the Mallat layout, kept so that blocks can be
   // coded again (pass skipping) and the encoder can rebuild what a decoder sees (PSNR targets):
   // reversible integers (lossless), or floats that tier-1 quantises as it loads each block (lossy).
-  std::vector<std::vector<std::int32_t>> quantized;
+  std::vector<imageio::SamplePlane> quantized;
   std::vector<FloatPlane> coefficients;
   std::vector<BlockJob> jobs;  // every block, indexed by CodeBlock::index: where it lies, its weight, its step
   double stop_threshold = 0;                         // the StopRule tier-1 ran with; 0: every pass
