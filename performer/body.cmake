@@ -17,6 +17,7 @@ target_sources(gpuj2k_performer PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/src/mesh_normals.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/body_mesh.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/skinned_mesh.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/src/body_weights.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/skeleton_skin.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/gltf_accessor.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/gltf_load.cpp

@@ -25,7 +25,9 @@
 
 #include "../performer/src/cli/pose.h"
 #include "performer/bvh.h"
+#include "performer/body_mesh.h"
 #include "performer/character.h"
+#include "performer/skeleton_skin.h"
 #include "performer/character_deform.h"
 #include "performer/face_deform.h"
 #include "performer/local_transforms.h"
@@ -353,6 +355,23 @@ TEST(CmuCharacter, HeadFollowsTheHeadJointRigidly) {
   }
   EXPECT_LT(worst_ratio, 1e-4f);
   EXPECT_GT(glm::distance(frame.positions[c.head_first], c.mesh.positions[c.head_first]), 1.0f);
+}
+
+// The character's body carries the skeleton-aware weights that binding the body alone gives
+// (performer_body_test's SkinHoldsTogetherInMotion checks how that skin holds in motion).
+TEST(CmuCharacter, BodyHasTheSkeletonAwareWeights) {
+  REQUIRE_SHARED_FILE(test_support::bvh_asset("cmu_131_01.bvh"));
+  const CmuCharacter& cmu = cmu_character("cmu_131_01.bvh");
+  const Character& c = cmu.character;
+  const performer::BodyMesh body = performer::build_body_mesh(cmu.bvh.skeleton, performer::CharacterParams{}.body);
+  const performer::SkinnedMesh alone = performer::bind_body_to_skeleton(cmu.bvh.skeleton, body);
+  ASSERT_EQ(c.head_first, body.mesh.positions.size());
+  ASSERT_EQ(c.influences, alone.influences);
+  const std::size_t slots = c.head_first * static_cast<std::size_t>(c.influences);
+  for (std::size_t i = 0; i < slots; ++i) {
+    ASSERT_EQ(c.joint_indices[i], alone.joint_indices[i]) << "slot " << i;
+    ASSERT_FLOAT_EQ(c.joint_weights[i], alone.joint_weights[i]) << "slot " << i;
+  }
 }
 
 std::size_t ply_vertex_count(const std::filesystem::path& file) {

@@ -88,6 +88,7 @@ BodyMesh build_body_mesh(const Skeleton& skeleton, const BodyMeshParams& params)
   for (std::size_t v = 0; v < body.mesh.normals.size(); ++v)
     if (body.mesh.normals[v] == glm::vec3(0.0f))
       body.mesh.normals[v] = field_normal(shape, body.mesh.positions[v], 0.5f * cell);
+  body.output_scale = params.output_scale;
   if (params.output_scale != 1.0f)
     for (glm::vec3& p : body.mesh.positions) p *= params.output_scale;
 

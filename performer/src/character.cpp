@@ -1,6 +1,7 @@
 #include "performer/character.h"
 
 #include <cmath>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -76,6 +77,7 @@ Character build_character(const Skeleton& skeleton, const FaceModel& face, const
     throw std::invalid_argument("build_character: more vertices than 32-bit indices can name");
 
   // Merge: body first, head after, head indices offset by the body's vertex count.
+  const std::size_t body_triangle_indices = body.mesh.indices.size();
   TriangleMesh merged = std::move(body.mesh);
   merged.positions.insert(merged.positions.end(), head.positions.begin(), head.positions.end());
   merged.normals.insert(merged.normals.end(), head.normals.begin(), head.normals.end());
@@ -86,9 +88,20 @@ Character build_character(const Skeleton& skeleton, const FaceModel& face, const
   Skeleton bind_skeleton = skeleton;
   if (params.body.output_scale != 1.0f)
     for (Joint& j : bind_skeleton.joints) j.offset *= params.body.output_scale;
-  // SSD weights over the merged mesh: per vertex, so the body's weights are exactly what binding the
-  // body alone gives; the head's are replaced below unless SSD is asked for.
-  SkinnedMesh skinned = bind_to_skeleton(bind_skeleton, std::move(merged), params.weights, params.threads);
+  // Equation 3.18 over the merged mesh, which the head keeps when SSD is asked for; the body's
+  // vertices then get the skeleton-aware weights binding the body alone gives (the same streams,
+  // the influence counts made to agree).
+  SsdWeightParams head_weights = params.weights;
+  head_weights.max_influences = params.body_weights.max_influences;
+  SkinnedMesh skinned = bind_to_skeleton(bind_skeleton, std::move(merged), head_weights, params.threads);
+  {
+    const auto slots = static_cast<std::size_t>(skinned.influences);
+    const std::span<const glm::vec3> body_positions(skinned.mesh.positions.data(), body_count);
+    const std::span<const std::uint32_t> body_triangles(skinned.mesh.indices.data(), body_triangle_indices);
+    body_ssd_weights(body.shape, body_positions, body_triangles, params.body.output_scale, params.body_weights,
+                     std::span<std::uint16_t>(skinned.joint_indices.data(), body_count * slots),
+                     std::span<float>(skinned.joint_weights.data(), body_count * slots), params.threads);
+  }
 
   Character c;
   c.head_first = body_count;

@@ -44,6 +44,7 @@ struct BodyMesh {
   TriangleMesh mesh;                  // closed, outward-facing, unit normals, in output units
   BodyShape shape;                    // what it was grown from, in skeleton units
   float cell = 0.0f;                  // grid spacing used, in skeleton units
+  float output_scale = 1.0f;          // mesh units per skeleton unit (BodyMeshParams::output_scale)
   int attach_joint = -1;              // the joint named shape.exclude_from, -1 if none
   glm::mat4 attach_rest_world{1.0f};  // that joint's rest world transform, translation in output units
   // Maps a head modelled in metres (neck base at the origin, +Y up, facing +Z) onto the attach joint

@@ -5,7 +5,10 @@
 // reads them: rest positions and normals, joint indices and weights, and, for the head's vertex range
 // only, the face's deformation vectors already turned into the body's frame.
 //
-// Binding: body vertices get SSD weights by equation 3.18 (bind_to_skeleton). Head vertices are bound
+// Binding: body vertices get skeleton-aware SSD weights (body_weights.h: each vertex seeded by the
+// bone it was grown from and that bone's skeleton neighbours, then blended by diffusion over the
+// skin), which keep the skin in one piece in motion where equation 3.18's distance weights over all
+// joints tear it (bind_body_to_skeleton). Head vertices are bound
 // rigidly to the head joint (one influence, weight 1) by default. The thesis' argument for applying
 // face deformation before skinning (3.6) is that head rotation and face deformation are orthogonal:
 // the face's DVs are authored for a rigid head. SSD over the head would pull the chin and the neck
@@ -23,6 +26,7 @@
 #include <glm/vec3.hpp>
 
 #include "performer/body_mesh.h"
+#include "performer/body_weights.h"
 #include "performer/face_model.h"
 #include "performer/skeleton.h"
 #include "performer/ssd_weights.h"
@@ -36,7 +40,8 @@ struct CharacterParams {
   // body.shape.exclude_from names the joint the head goes on ("Head" for CMU files); the head model
   // is taken to be in metres and placed with BodyMesh::head_placement.
   BodyMeshParams body;
-  SsdWeightParams weights;  // equation 3.18 for the body (and for the head when head = ssd)
+  BodyWeightParams body_weights;  // the body's
+  SsdWeightParams weights;        // equation 3.18, for the head when head = ssd
   HeadBinding head = HeadBinding::rigid;
   unsigned threads = 0;  // for building (body grid, weights); 0: hardware concurrency
 };

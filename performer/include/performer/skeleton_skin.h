@@ -3,6 +3,8 @@
 // as one SkinnedMesh that skins with the BVH's motion and exports to glTF (gltf_skin.h).
 #pragma once
 
+#include "performer/body_mesh.h"
+#include "performer/body_weights.h"
 #include "performer/skeleton.h"
 #include "performer/skinned_mesh.h"
 #include "performer/ssd_weights.h"
@@ -17,5 +19,13 @@ namespace performer {
 // the skeleton has no joint that is not an end site, or as ssd_weights does.
 SkinnedMesh bind_to_skeleton(const Skeleton& skeleton, TriangleMesh mesh, const SsdWeightParams& params = {},
                              unsigned threads = 0);
+
+// The same for a body grown around the skeleton (build_body_mesh), with the skeleton-aware weights
+// of body_weights.h: each vertex moves with the bone it was grown from and that bone's neighbours
+// along the skeleton only, so the skin holds together in motion. `skeleton` in its own units (the
+// joints and inverse binds come out in the mesh's, body.output_scale times larger). Throws
+// std::invalid_argument as body_ssd_weights does.
+SkinnedMesh bind_body_to_skeleton(const Skeleton& skeleton, const BodyMesh& body, const BodyWeightParams& params = {},
+                                  unsigned threads = 0);
 
 }  // namespace performer
