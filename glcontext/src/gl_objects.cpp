@@ -47,6 +47,14 @@ Buffer Buffer::create(const GlApi& gl) {
   return Buffer(gl, checked_name(gl, id, "glGenBuffers"));
 }
 
+Buffer Buffer::create(const GlApi& gl, GLenum target, std::size_t bytes, const void* data, GLenum usage) {
+  Buffer buffer = create(gl);
+  gl.glBindBuffer(target, buffer.id());
+  gl.glBufferData(target, static_cast<GLsizeiptr>(bytes), data, usage);
+  check(gl, "glBufferData");
+  return buffer;
+}
+
 VertexArray VertexArray::create(const GlApi& gl) {
   GLuint id = 0;
   gl.glGenVertexArrays(1, &id);

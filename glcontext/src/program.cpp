@@ -90,6 +90,28 @@ Program Program::link(const GlApi& gl, std::string_view vertex_src,
   return program;
 }
 
+Program Program::link_capture(const GlApi& gl, std::string_view vertex_src, std::span<const char* const> varyings,
+                              std::string_view label) {
+  const Shader vs = Shader::compile(gl, GL_VERTEX_SHADER, vertex_src, label);
+  const GLuint id = gl.glCreateProgram();
+  if (id == 0) {
+    check(gl, "glCreateProgram");
+    throw GlError("glCreateProgram returned 0 for '" + std::string(label) + "'");
+  }
+  Program program(gl, id);
+  gl.glAttachShader(id, vs.id());
+  gl.glTransformFeedbackVaryings(id, static_cast<GLsizei>(varyings.size()), varyings.data(), GL_INTERLEAVED_ATTRIBS);
+  gl.glLinkProgram(id);
+  gl.glDetachShader(id, vs.id());
+  GLint ok = GL_FALSE;
+  gl.glGetProgramiv(id, GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    throw GlError("program '" + std::string(label) + "' failed to link:\n" + program_log(gl, id));
+  }
+  check(gl, "Program::link_capture");
+  return program;
+}
+
 GLint Program::uniform(const char* name) const { return api()->glGetUniformLocation(id(), name); }
 
 void Program::use() const { api()->glUseProgram(id()); }

@@ -120,6 +120,11 @@ namespace glc {
   X(PFNGLENABLEVERTEXATTRIBARRAYPROC, glEnableVertexAttribArray)             \
   X(PFNGLDISABLEVERTEXATTRIBARRAYPROC, glDisableVertexAttribArray)           \
   X(PFNGLVERTEXATTRIBDIVISORPROC, glVertexAttribDivisor)                     \
+  /* transform feedback and texture buffers */                               \
+  X(PFNGLTRANSFORMFEEDBACKVARYINGSPROC, glTransformFeedbackVaryings)         \
+  X(PFNGLBEGINTRANSFORMFEEDBACKPROC, glBeginTransformFeedback)               \
+  X(PFNGLENDTRANSFORMFEEDBACKPROC, glEndTransformFeedback)                   \
+  X(PFNGLTEXBUFFERPROC, glTexBuffer)                                         \
   /* drawing and fixed-function state */                                     \
   X(PFNGLDRAWARRAYSPROC, glDrawArrays)                                       \
   X(PFNGLDRAWELEMENTSPROC, glDrawElements)                                   \

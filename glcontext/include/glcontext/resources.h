@@ -5,6 +5,7 @@
 
 #include "glcontext/gl_api.h"
 
+#include <span>
 #include <string_view>
 #include <utility>
 
@@ -81,6 +82,10 @@ class Program : public detail::GlObject<&detail::delete_program> {
   // GlError carrying `label` and the driver's full info log.
   static Program link(const GlApi& gl, std::string_view vertex_src,
                       std::string_view fragment_src, std::string_view label);
+  // A vertex shader alone whose outputs `varyings` are captured by transform feedback, interleaved
+  // in that order into one buffer (GL_INTERLEAVED_ATTRIBS); draw with GL_RASTERIZER_DISCARD.
+  static Program link_capture(const GlApi& gl, std::string_view vertex_src,
+                              std::span<const char* const> varyings, std::string_view label);
 
   // glGetUniformLocation; -1 when the uniform does not exist or was
   // optimized away (not an error, GL ignores glUniform* on -1).
@@ -135,6 +140,9 @@ class Buffer : public detail::GlObject<&detail::delete_buffer> {
  public:
   Buffer() = default;
   static Buffer create(const GlApi& gl);
+  // A buffer of `bytes` bytes (data may be null: uninitialised) with `usage` (GL_STATIC_DRAW, ...),
+  // filled through `target`, which it is left bound to. Throws GlError on a GL error (out of memory).
+  static Buffer create(const GlApi& gl, GLenum target, std::size_t bytes, const void* data, GLenum usage);
 
  private:
   using GlObject::GlObject;
