@@ -14,6 +14,8 @@ PACKAGES=(
   libglm-dev                    # vector maths for the performer
   libespeak-ng-dev espeak-ng-data  # the performer's text to speech (GPL-3.0: linked by the performer only)
   libtinygltf-dev               # glTF 2.0 avatars (morph targets, skins) for the performer
+  libavformat-dev libavcodec-dev libswscale-dev libavutil-dev  # the performer's video (H.264 via libx264: GPL, performer only)
+  ffmpeg                        # ffprobe, which the render tests read the videos back with
   libgtest-dev                  # tests
   clang libclang-rt-14-dev      # libFuzzer for the reader fuzzers (scripts/fuzz.sh)
   libopenjp2-tools grokj2k-tools  # reference decoders the codec's output is checked against

@@ -45,4 +45,16 @@ void Framebuffer::attach_color(const Texture& texture, int index) {
   }
 }
 
+void Framebuffer::attach(GLenum attachment, const Renderbuffer& renderbuffer, bool check_complete) {
+  const GlApi& gl = *api();
+  bind();
+  gl.glFramebufferRenderbuffer(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, renderbuffer.id());
+  check(gl, "Framebuffer::attach");
+  if (!check_complete) return;
+  const GLenum status = gl.glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    throw GlError("framebuffer incomplete: " + framebuffer_status_name(status));
+  }
+}
+
 }  // namespace glc

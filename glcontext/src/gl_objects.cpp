@@ -2,6 +2,7 @@
 #include "glcontext/error.h"
 #include "glcontext/resources.h"
 
+#include <algorithm>
 #include <string>
 
 namespace glc {
@@ -14,6 +15,7 @@ void delete_framebuffer(const GlApi& gl, GLuint id) { gl.glDeleteFramebuffers(1,
 void delete_buffer(const GlApi& gl, GLuint id) { gl.glDeleteBuffers(1, &id); }
 void delete_vertex_array(const GlApi& gl, GLuint id) { gl.glDeleteVertexArrays(1, &id); }
 void delete_query(const GlApi& gl, GLuint id) { gl.glDeleteQueries(1, &id); }
+void delete_renderbuffer(const GlApi& gl, GLuint id) { gl.glDeleteRenderbuffers(1, &id); }
 
 }  // namespace detail
 
@@ -33,6 +35,22 @@ Texture Texture::create(const GlApi& gl) {
   GLuint id = 0;
   gl.glGenTextures(1, &id);
   return Texture(gl, checked_name(gl, id, "glGenTextures"));
+}
+
+Renderbuffer Renderbuffer::create(const GlApi& gl, int width, int height, GLenum internal_format, int samples) {
+  GLuint id = 0;
+  gl.glGenRenderbuffers(1, &id);
+  Renderbuffer rb(gl, checked_name(gl, id, "glGenRenderbuffers"));
+  GLint max_samples = 0;
+  gl.glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  rb.samples_ = samples > 0 ? std::min(samples, static_cast<int>(max_samples)) : 0;
+  gl.glBindRenderbuffer(GL_RENDERBUFFER, id);
+  if (rb.samples_ > 0)
+    gl.glRenderbufferStorageMultisample(GL_RENDERBUFFER, rb.samples_, internal_format, width, height);
+  else
+    gl.glRenderbufferStorage(GL_RENDERBUFFER, internal_format, width, height);
+  check(gl, "glRenderbufferStorage");
+  return rb;
 }
 
 Framebuffer Framebuffer::create(const GlApi& gl) {

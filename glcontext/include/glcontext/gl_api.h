@@ -100,6 +100,7 @@ namespace glc {
   X(PFNGLDELETERENDERBUFFERSPROC, glDeleteRenderbuffers)                     \
   X(PFNGLBINDRENDERBUFFERPROC, glBindRenderbuffer)                           \
   X(PFNGLRENDERBUFFERSTORAGEPROC, glRenderbufferStorage)                     \
+  X(PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC, glRenderbufferStorageMultisample) \
   /* buffers */                                                              \
   X(PFNGLGENBUFFERSPROC, glGenBuffers)                                       \
   X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers)                                 \
@@ -142,6 +143,7 @@ namespace glc {
   X(PFNGLBLENDFUNCPROC, glBlendFunc)                                         \
   X(PFNGLBLENDEQUATIONPROC, glBlendEquation)                                 \
   X(PFNGLCULLFACEPROC, glCullFace)                                           \
+  X(PFNGLFRONTFACEPROC, glFrontFace)                                         \
   X(PFNGLREADPIXELSPROC, glReadPixels)                                       \
   X(PFNGLFINISHPROC, glFinish)                                               \
   X(PFNGLFLUSHPROC, glFlush)                                                 \

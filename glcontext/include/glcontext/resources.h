@@ -19,6 +19,7 @@ void delete_framebuffer(const GlApi& gl, GLuint id);
 void delete_buffer(const GlApi& gl, GLuint id);
 void delete_vertex_array(const GlApi& gl, GLuint id);
 void delete_query(const GlApi& gl, GLuint id);
+void delete_renderbuffer(const GlApi& gl, GLuint id);
 
 // Shared ownership mechanics: one GL name plus the API to delete it with.
 // A default-constructed or moved-from object owns nothing (id() == 0).
@@ -119,6 +120,19 @@ class Texture : public detail::GlObject<&detail::delete_texture> {
   GLenum internal_format_ = 0;
 };
 
+class Renderbuffer : public detail::GlObject<&detail::delete_renderbuffer> {
+ public:
+  Renderbuffer() = default;
+  // Storage of `internal_format` (GL_RGBA8, GL_DEPTH_COMPONENT24, ...), multisampled when samples
+  // > 0 (clamped to GL_MAX_SAMPLES; samples() says how many the driver gave). Throws GlError.
+  static Renderbuffer create(const GlApi& gl, int width, int height, GLenum internal_format, int samples = 0);
+  int samples() const noexcept { return samples_; }
+
+ private:
+  using GlObject::GlObject;
+  int samples_ = 0;
+};
+
 class Framebuffer : public detail::GlObject<&detail::delete_framebuffer> {
  public:
   Framebuffer() = default;
@@ -130,6 +144,9 @@ class Framebuffer : public detail::GlObject<&detail::delete_framebuffer> {
   // glDrawBuffers cover every attached slot, then checks completeness and
   // throws GlError with the status name. Leaves the framebuffer bound.
   void attach_color(const Texture& texture, int index = 0);
+  // Attaches a renderbuffer at `attachment` (GL_COLOR_ATTACHMENT0, GL_DEPTH_ATTACHMENT, ...); with
+  // `check_complete`, then checks completeness as attach_color does. Leaves the framebuffer bound.
+  void attach(GLenum attachment, const Renderbuffer& renderbuffer, bool check_complete = true);
 
  private:
   using GlObject::GlObject;

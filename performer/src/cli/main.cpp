@@ -4,11 +4,14 @@
 //   performer visemes --lang yue --text "你好" -o weights.csv   lip-sync weights per frame (+ --wav)
 //   performer face --weights weights.csv -o frames/            the deformed head per frame
 //   performer pose --bvh walk.bvh --frames 0:99 [--text ... --lang ...] -o frames/   the whole performer
+//   performer render --bvh walk.bvh [--text ... --lang ...] [--effects env,hair,snow,toon] -o out.mp4
+//                                                              the rendered performer, as video with its speech
 //
 // Every failure is one line on stderr starting "performer: " and a non-zero exit: 2 for a command
 // line that does not parse, 1 for anything that goes wrong running it.
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <stdexcept>
@@ -17,6 +20,7 @@
 #include "face.h"
 #include "info.h"
 #include "pose.h"
+#include "render.h"
 #include "performer/bvh.h"
 #include "performer/viseme_library.h"
 #include "performer/weights_input.h"
@@ -73,7 +77,8 @@ int main(int argc, char** argv) {
       "  performer visemes --lang yue --text \"你好\" --fps 30 -o weights.csv --wav hello.wav\n"
       "  performer visemes --lang en-us --text \"Hello there\" --expression smile -o weights.json\n"
       "  performer face --weights weights.csv -o frames/ --format obj\n"
-      "  performer pose --bvh 131_01.bvh --frames 0:119 --lang en-us --text \"Hello\" -o frames/\n"};
+      "  performer pose --bvh 131_01.bvh --frames 0:119 --lang en-us --text \"Hello\" -o frames/\n"
+      "  performer render --bvh 131_01.bvh --lang en-us --text \"Hello\" --effects env,hair -o hello.mp4\n"};
   app.require_subcommand(1);
 
   std::string bvh_path;
@@ -108,6 +113,24 @@ int main(int argc, char** argv) {
   pose->add_option("--threads", pose_command.threads, "threads (default: all)");
   pose->add_option("--weights", pose_weights, "face weights from a CSV (performer visemes) instead of lip-sync options");
   add_lip_sync_options(pose, pose_lip_sync);
+
+  performer::cli::LipSyncSource render_lip_sync;
+  performer::cli::RenderCommand render_command;
+  std::string render_frames, render_size;
+  std::filesystem::path render_weights;
+  CLI::App* render = app.add_subcommand("render", "the performer rendered on the GPU (equation 3.20 in a vertex shader, section "
+                                                   "3.7's effects), as an MP4 with the speech or as PNG frames");
+  render->add_option("--bvh", render_command.bvh, "BVH motion capture file")->required();
+  render->add_option("--frames", render_frames, "first and last BVH frame, A:B, from 0 (default: the whole clip)");
+  render->add_option("-o,--output", render_command.out, "an .mp4 file, or a folder for frame_00000.png, ...")->required();
+  render->add_option("--effects", render_command.effects, "any of env, hair, snow, toon, comma-separated (default none)");
+  render->add_option("--size", render_size, "frame size WxH (default 640x480; even for MP4)");
+  render->add_option("--gl", render_command.gl_platform, "GL platform: auto, egl-device, egl-surfaceless, egl-default, osmesa");
+  render->add_option("--cubemap", render_command.cubemap_dir,
+                     "folder with posx/negx/posy/negy/posz/negz for env (default ../shared/assets/cubemap)");
+  render->add_option("--threads", render_command.threads, "threads for building the character (default: all)");
+  render->add_option("--weights", render_weights, "face weights from a CSV (performer visemes) instead of lip-sync options");
+  add_lip_sync_options(render, render_lip_sync);
 
   try {
     app.parse(argc, argv);
@@ -147,6 +170,34 @@ int main(int argc, char** argv) {
         pose_command.weights = &track;
       }
       performer::cli::run_pose(pose_command, stderr);
+    } else if (render->parsed()) {
+      if (!render_frames.empty()) parse_frame_range(render_frames, render_command.first_frame, render_command.last_frame);
+      if (!render_size.empty()) {
+        const std::size_t x = render_size.find('x');
+        try {
+          if (x == std::string::npos) throw std::invalid_argument("no x");
+          std::size_t used_w = 0, used_h = 0;
+          render_command.width = std::stoi(render_size.substr(0, x), &used_w);
+          render_command.height = std::stoi(render_size.substr(x + 1), &used_h);
+          if (used_w != x || used_h != render_size.size() - x - 1) throw std::invalid_argument("trailing text");
+        } catch (const std::exception&) {
+          throw std::invalid_argument("--size must be WxH, for example 1280x720, not \"" + render_size + "\"");
+        }
+      }
+      if (render_command.cubemap_dir.empty()) render_command.cubemap_dir = "../shared/assets/cubemap";
+      render_command.fps = static_cast<int>(std::lround(render_lip_sync.fps));  // --fps: the video's and the track's
+      const bool lip_sync = !render_lip_sync.text.empty() || !render_lip_sync.keyframes.empty() || !render_lip_sync.rhubarb.empty();
+      if (lip_sync && !render_weights.empty()) throw std::invalid_argument("give --weights or lip-sync options, not both");
+      performer::WeightTrack track;
+      performer::Speech speech;
+      if (lip_sync || !render_weights.empty()) {
+        const auto library = performer::VisemeLibrary::load_default();
+        track = lip_sync ? performer::cli::lip_sync_track(render_lip_sync, library, &speech)
+                         : performer::read_weights_csv(render_weights, library.visemes());
+        render_command.weights = &track;
+        if (!speech.samples.empty()) render_command.speech = &speech;
+      }
+      performer::cli::run_render(render_command, stderr);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "performer: %s\n", one_line(e.what()).c_str());

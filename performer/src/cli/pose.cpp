@@ -17,34 +17,11 @@
 #include "performer/viseme_library.h"
 #include "performer/viseme_set.h"
 #include "performer/world_transforms.h"
+#include "track_sampling.h"
 
 namespace performer::cli {
 
 namespace {
-
-// The track's channel values at `seconds`: linear between the two surrounding frames (weights are
-// sampled curves, so linear interpolation is what a renderer between samples would do), clamped to
-// the first and last frame. `out` has one value per channel.
-void sample_track(const WeightTrack& track, double seconds, std::span<float> out) {
-  const std::vector<double>& t = track.times;
-  const std::size_t channels = track.channel_count();
-  if (t.empty()) {
-    std::fill(out.begin(), out.end(), 0.0f);
-    return;
-  }
-  const auto after = std::upper_bound(t.begin(), t.end(), seconds);
-  if (after == t.begin() || after == t.end()) {
-    const auto row = track.frame(after == t.begin() ? 0 : t.size() - 1);
-    std::copy(row.begin(), row.end(), out.begin());
-    return;
-  }
-  const auto f1 = static_cast<std::size_t>(after - t.begin());
-  const std::size_t f0 = f1 - 1;
-  const double span = t[f1] - t[f0];
-  const auto a = static_cast<float>(span > 0.0 ? (seconds - t[f0]) / span : 0.0);
-  const auto r0 = track.frame(f0), r1 = track.frame(f1);
-  for (std::size_t c = 0; c < channels; ++c) out[c] = r0[c] + a * (r1[c] - r0[c]);
-}
 
 std::filesystem::path frame_path(const std::filesystem::path& dir, int frame, const std::string& format) {
   char name[32];

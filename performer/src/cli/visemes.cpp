@@ -17,7 +17,7 @@
 
 namespace performer::cli {
 
-WeightTrack lip_sync_track(const LipSyncSource& source, const VisemeLibrary& library) {
+WeightTrack lip_sync_track(const LipSyncSource& source, const VisemeLibrary& library, Speech* speech_out) {
   const int sources = !source.text.empty() + !source.keyframes.empty() + !source.rhubarb.empty();
   if (sources != 1) throw std::invalid_argument("give exactly one of --text, --keyframes and --rhubarb");
   if (!source.wav.empty() && source.text.empty()) throw std::invalid_argument("--wav needs --text (speech to write)");
@@ -32,6 +32,7 @@ WeightTrack lip_sync_track(const LipSyncSource& source, const VisemeLibrary& lib
     visemes = speech_visemes(speech.phonemes, map);
     end = speech.duration();
     if (!source.wav.empty()) write_wav(source.wav, speech.sample_rate, speech.samples);
+    if (speech_out) *speech_out = speech;
   } else if (!source.keyframes.empty()) {
     visemes = keyframes_to_visemes(read_phoneme_keyframes(source.keyframes), library, source.keyframes.string());
   } else {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "performer/viseme_library.h"
+#include "performer/speech.h"
 #include "performer/weights_track.h"
 
 namespace performer::cli {
@@ -29,7 +30,7 @@ struct LipSyncSource {
 
 // Exactly one of text, keyframes and rhubarb must be given (std::invalid_argument otherwise).
 // Writes the WAV when asked. Errors from the sources propagate with their file and line.
-WeightTrack lip_sync_track(const LipSyncSource& source, const VisemeLibrary& library);
+WeightTrack lip_sync_track(const LipSyncSource& source, const VisemeLibrary& library, Speech* speech = nullptr);
 
 // Writes the track to `out` as CSV, or JSON when its extension is .json; atomically.
 void write_track(const WeightTrack& track, const std::filesystem::path& out);

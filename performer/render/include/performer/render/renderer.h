@@ -1,0 +1,67 @@
+// The character's rendering (thesis 3.7) on the shared GL layer: per-pixel lighting of the
+// deformed character, a floor, and the optional effects of scene.h (an environment sphere from a
+// cube map, hair shells, snow billboards, cartoon shading with outlines), into an offscreen
+// multisampled framebuffer with depth, resolved and read back as RGB for images and video.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+
+#include "glcontext/context.h"
+#include "glcontext/resources.h"
+#include "performer/character.h"
+#include "performer/render/gpu_deformer.h"
+#include "performer/render/scene.h"
+
+namespace performer::render {
+
+struct RenderSettings {
+  int width = 640;
+  int height = 480;
+  int samples = 4;  // multisampling; clamped to what the driver offers
+  Effects effects;
+  // posx, negx, posy, negy, posz, negz (.jpg or .png) for the environment effect.
+  std::filesystem::path cubemap_dir;
+};
+
+class Renderer {
+ public:
+  // `character` is what `deformed` deforms; both must outlive the renderer, and `context` be
+  // current. Throws std::invalid_argument for a bad size or a missing cube map face (naming the
+  // file), glc::GlError for GL failures.
+  Renderer(glc::Context& context, const Character& character, const RenderSettings& settings);
+
+  // Draws one frame of the deformer's current result seen by `camera`, the floor at floor_y (the
+  // character's lowest rest point), snow when the effect is on and `snow` is given.
+  void render(const GpuDeformer& deformed, const Camera& camera, float floor_y, const Snow* snow = nullptr);
+
+  // The environment (or sky) alone seen by `camera`: what render() draws behind everything.
+  void render_environment(const Camera& camera);
+
+  // The last frame as 8-bit RGB, rows top first: width * height * 3 bytes.
+  void read_rgb(std::span<std::uint8_t> out) const;
+
+  int width() const { return settings_.width; }
+  int height() const { return settings_.height; }
+  int samples() const { return samples_; }
+  const RenderSettings& settings() const { return settings_; }
+
+ private:
+  void draw_environment(const Camera& camera);  // binds the scene target, clears, draws the sky
+  void resolve();                               // the samples into the read-back target
+
+  glc::Context* context_;
+  const Character* character_;
+  RenderSettings settings_;
+  int samples_ = 0;
+  std::size_t head_index_first_ = 0;  // where the head's triangles start in the index stream
+  glc::Renderbuffer color_, depth_, resolved_;
+  glc::Framebuffer scene_fbo_, resolve_fbo_;
+  glc::Program character_program_, outline_program_, hair_program_, sky_program_, floor_program_, snow_program_;
+  glc::Buffer indices_, hair_attributes_, snow_instances_, floor_corners_;
+  glc::VertexArray character_vao_, sky_vao_, floor_vao_, snow_vao_;
+  glc::Texture cubemap_;
+};
+
+}  // namespace performer::render

@@ -1,0 +1,218 @@
+#include "render.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <system_error>
+#include <vector>
+
+#include "glcontext/context.h"
+#include "imageio/image.h"
+#include "imageio/write.h"
+#include "performer/bvh.h"
+#include "performer/character.h"
+#include "performer/face_deform.h"
+#include "performer/local_transforms.h"
+#include "performer/procedural_head.h"
+#include "performer/render/gpu_deformer.h"
+#include "performer/render/renderer.h"
+#include "performer/render/scene.h"
+#include "performer/skinning.h"
+#include "performer/video/video_writer.h"
+#include "performer/viseme_library.h"
+#include "performer/viseme_set.h"
+#include "performer/world_transforms.h"
+#include "track_sampling.h"
+
+namespace performer::cli {
+
+namespace {
+
+// The frame sink: an MP4 (appearing only when finished) or a folder of PNGs (written into a
+// temporary folder that is renamed into place at the end).
+class FrameSink {
+ public:
+  FrameSink(const RenderCommand& c, const Speech* speech) : out_(c.out) {
+    if (c.out.extension() == ".mp4") {
+      video::VideoSettings vs;
+      vs.width = c.width;
+      vs.height = c.height;
+      vs.fps = c.fps;
+      video::AudioTrack audio;
+      if (speech && speech->sample_rate > 0 && !speech->samples.empty()) {
+        audio.sample_rate = speech->sample_rate;
+        audio.samples = speech->samples;
+      }
+      video_ = std::make_unique<video::VideoWriter>(c.out, vs, audio.samples.empty() ? nullptr : &audio);
+      return;
+    }
+    if (c.out.has_extension())
+      throw std::invalid_argument("-o must be an .mp4 file or a folder for PNG frames, not \"" + c.out.string() + "\"");
+    if (std::filesystem::exists(c.out) && !std::filesystem::is_empty(c.out))
+      throw std::invalid_argument(c.out.string() + " exists and is not empty");
+    folder_ = c.out;
+    folder_ += ".partial";
+    std::filesystem::remove_all(folder_);
+    std::filesystem::create_directories(folder_);
+  }
+  ~FrameSink() {
+    if (!done_ && !folder_.empty()) {
+      std::error_code ignored;
+      std::filesystem::remove_all(folder_, ignored);
+    }
+  }
+  void add(std::span<const std::uint8_t> rgb, int width, int height) {
+    if (video_) {
+      video_->write_frame(rgb);
+    } else {
+      imageio::Image image;
+      image.width = width;
+      image.height = height;
+      image.channels = 3;
+      image.bits_per_sample = 8;
+      image.pixels.assign(rgb.begin(), rgb.end());
+      char name[32];
+      std::snprintf(name, sizeof name, "frame_%05d.png", count_);
+      imageio::write_image((folder_ / name).string(), image);
+    }
+    ++count_;
+  }
+  void finish() {
+    if (video_) {
+      video_->finish();
+    } else {
+      std::filesystem::remove(out_);  // an empty folder given as the target
+      std::filesystem::rename(folder_, out_);
+    }
+    done_ = true;
+  }
+
+ private:
+  std::filesystem::path out_, folder_;
+  std::unique_ptr<video::VideoWriter> video_;
+  int count_ = 0;
+  bool done_ = false;
+};
+
+void progress(std::FILE* log, bool terminal, int done, int total, double seconds) {
+  if (!terminal) return;
+  const int width = 30, filled = total > 0 ? done * width / total : width;
+  std::fprintf(log, "\rrender [%.*s%*s] %d/%d frames, %.1f fps", filled, "##############################",
+               width - filled, "", done, total, seconds > 0 ? done / seconds : 0.0);
+  if (done == total) std::fputc('\n', log);
+  std::fflush(log);
+}
+
+}  // namespace
+
+void run_render(const RenderCommand& c, std::FILE* log) {
+  const render::Effects effects = render::parse_effects(c.effects);
+  if (c.fps < 1 || c.fps > 240) throw std::invalid_argument("--fps must be 1 to 240");
+  const Bvh bvh = read_bvh(c.bvh);
+  const Skeleton& skeleton = bvh.skeleton;
+  const int frames = bvh.motion.frames;
+  const int last = c.last_frame < 0 ? frames - 1 : c.last_frame;
+  if (frames == 0 || c.first_frame < 0 || last >= frames || c.first_frame > last)
+    throw std::invalid_argument("frames " + std::to_string(c.first_frame) + ".." + std::to_string(last) + " outside " +
+                                c.bvh.string() + "'s " +
+                                (frames > 0 ? "0.." + std::to_string(frames - 1) : std::string("(no frames)")));
+  if (effects.environment && !std::filesystem::is_directory(c.cubemap_dir))
+    throw std::invalid_argument("the env effect needs a cube map folder (--cubemap), \"" + c.cubemap_dir.string() +
+                                "\" is not one");
+  // Output frames at c.fps over the chosen span of the clip (its frames at their own rate).
+  const double duration = (last - c.first_frame) * bvh.motion.frame_time;
+  const int out_frames = std::max(1, static_cast<int>(std::floor(duration * c.fps + 1e-9)) + 1);
+
+  const VisemeSet set = load_viseme_set(default_viseme_dir() / "visemes.tsv");
+  const FaceModel face = build_procedural_head(set);
+  CharacterParams params;
+  params.threads = c.threads;
+  params.body.threads = c.threads;
+  const Character character = build_character(skeleton, face, params);
+
+  const auto context = glc::Context::create(c.gl_platform.empty() ? glc::platform_from_env()
+                                                                    : glc::parse_platform(c.gl_platform));
+  render::GpuDeformer deformer(*context, character);
+  render::RenderSettings rs;
+  rs.width = c.width;
+  rs.height = c.height;
+  rs.effects = effects;
+  rs.cubemap_dir = c.cubemap_dir;
+  render::Renderer renderer(*context, character, rs);
+  std::fprintf(log, "render: %zu vertices, %d frames at %d fps, %dx%d, effects %s, on %s\n", character.vertex_count(),
+               out_frames, c.fps, c.width, c.height, render::effects_name(effects).c_str(), context->description().c_str());
+
+  // The figure's height from the rest pose; the floor where the motion puts its lowest joint, less
+  // what the skin reaches below the lowest joint at rest (the soles).
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const glm::vec3& p : character.mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const float height = hi.y - lo.y;
+  float floor_y = 1e30f;
+  {
+    std::vector<glm::mat4> l(skeleton.joints.size()), w(skeleton.joints.size());
+    rest_local_transforms(skeleton, l);
+    world_transforms(skeleton, l, w);
+    float rest_lowest = 1e30f;
+    for (const glm::mat4& m : w) rest_lowest = std::min(rest_lowest, m[3][1]);
+    const float sole = rest_lowest - lo.y;
+    for (int f = c.first_frame; f <= last; f += std::max(1, (last - c.first_frame) / 200)) {
+      local_transforms(skeleton, frame_values(skeleton, bvh.motion, f), l);
+      world_transforms(skeleton, l, w);
+      for (const glm::mat4& m : w) floor_y = std::min(floor_y, m[3][1] - sole);
+    }
+  }
+  std::unique_ptr<render::Snow> snow;
+  if (effects.snow) snow = std::make_unique<render::Snow>(1500, glm::vec3(0.0f), 1.6f * height, floor_y, 1.4f * height);
+
+  ChannelBinding binding;
+  std::vector<float> channel_values;
+  if (c.weights) {
+    binding = bind_channels(*c.weights, face);
+    channel_values.resize(c.weights->channel_count());
+  }
+  std::vector<float> face_weights(character.targets.size(), 0.0f);
+  std::vector<glm::mat4> local(skeleton.joints.size()), world(skeleton.joints.size()), matrices(skeleton.joints.size());
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(c.width) * static_cast<std::size_t>(c.height) * 3);
+  FrameSink sink(c, c.speech);
+  const bool terminal = ::isatty(::fileno(log)) != 0;
+  const auto start = std::chrono::steady_clock::now();
+  glm::vec3 tracked(0.0f), facing(0.0f, 0.0f, 1.0f);
+  const float aspect = static_cast<float>(c.width) / static_cast<float>(c.height);
+  for (int k = 0; k < out_frames; ++k) {
+    const double t = static_cast<double>(k) / c.fps;
+    const int f = std::min(last, c.first_frame + static_cast<int>(std::lround(t / bvh.motion.frame_time)));
+    local_transforms(skeleton, frame_values(skeleton, bvh.motion, f), local);
+    world_transforms(skeleton, local, world);
+    skinning_matrices(world, character.inverse_bind, matrices);
+    if (c.weights) {
+      sample_track(*c.weights, t, channel_values);
+      target_weights(binding, channel_values, face_weights);
+      keep_strongest(face_weights, render::GpuDeformer::kFaceSlots);
+    }
+    deformer.deform(face_weights, matrices);
+    // The camera follows the hips smoothly, from the side the figure faced at the start.
+    const glm::vec3 hips(world[0][3]);
+    tracked = k == 0 ? hips : tracked + 0.15f * (hips - tracked);
+    if (k == 0) facing = glm::vec3(world[0] * glm::vec4(0.0f, 0.0f, 1.0f, 0.0f));
+    const render::Camera camera = render::frame_figure(tracked, floor_y, height, facing, aspect);
+    if (snow) {
+      snow->recentre(glm::vec3(tracked.x, 0.0f, tracked.z));
+      snow->step(1.0f / static_cast<float>(c.fps));
+    }
+    renderer.render(deformer, camera, floor_y, snow.get());
+    renderer.read_rgb(rgb);
+    sink.add(rgb, c.width, c.height);
+    progress(log, terminal, k + 1, out_frames,
+             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  sink.finish();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::fprintf(log, "render: %d frames written to %s in %.1f s (%.1f fps)\n", out_frames, c.out.string().c_str(), seconds,
+               out_frames / seconds);
+}
+
+}  // namespace performer::cli
