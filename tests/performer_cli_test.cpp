@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -149,6 +150,7 @@ class ScratchFolder {
   }
   ~ScratchFolder() { fs::remove_all(path_); }
   fs::path operator/(const std::string& leaf) const { return path_ / leaf; }
+  const fs::path& path() const { return path_; }
 
  private:
   fs::path path_;
@@ -254,6 +256,90 @@ TEST(PerformerCli, PoseWithSpeech) {
     expect_one_error_line(bad);
     EXPECT_FALSE(fs::exists(dir / "bad")) << range;
   }
+}
+
+
+// `performer render` end to end: an MP4 that ffprobe reads with the size and frame count asked for
+// and an audio stream as long as the speech (within one frame).
+std::string run_ffprobe(const fs::path& video, const std::string& entries, const std::string& stream) {
+  const ScratchFolder dir("ffprobe");
+  const std::string out = (dir / "probe.txt").string();
+  const std::string command = "ffprobe -v error -select_streams " + stream + " -show_entries stream=" + entries +
+                              " -of default=noprint_wrappers=1:nokey=1 '" + video.string() + "' > '" + out + "'";
+  if (std::system(command.c_str()) != 0) return {};
+  return slurp(out);
+}
+
+double wav_seconds(const fs::path& wav) {
+  const std::string bytes = slurp(wav);
+  if (bytes.size() < 44) return 0.0;
+  auto u32 = [&](std::size_t at) {
+    return static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[at])) |
+           static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[at + 1])) << 8 |
+           static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[at + 2])) << 16 |
+           static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[at + 3])) << 24;
+  };
+  const std::uint32_t rate = u32(24);
+  const std::size_t data = bytes.find("data");
+  if (rate == 0 || data == std::string::npos) return 0.0;
+  return static_cast<double>(u32(data + 4)) / 2.0 / rate;  // 16-bit mono
+}
+
+TEST(PerformerCli, RenderWritesVideoWithTheSpeech) {
+  const char* root = std::getenv("GPUJ2K_SOURCE_DIR");
+  if (root == nullptr) GTEST_SKIP() << "GPUJ2K_SOURCE_DIR is not set (run through ctest); skipping the CMU test";
+  const fs::path bvh = fs::path(root) / ".." / "shared" / "assets" / "bvh" / "cmu_131_01.bvh";
+  if (!fs::exists(bvh)) GTEST_SKIP() << "motion capture asset " << bvh << " not found; skipping";
+  if (std::system("ffprobe -version > /dev/null 2>&1") != 0) GTEST_SKIP() << "ffprobe (Debian: ffmpeg) not installed";
+  const ScratchFolder dir("render");
+  const std::string text = "Hello there";
+  const RunResult r = run_performer({"render", "--bvh", bvh.string(), "--frames", "0:90", "--size", "160x120", "--lang",
+                                     "en-us", "--text", text, "--effects", "env,hair,snow,toon", "--cubemap",
+                                     (fs::path(root) / ".." / "shared" / "assets" / "cubemap").string(), "-o",
+                                     (dir / "hello.mp4").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(fs::exists(dir / "hello.mp4"));
+  EXPECT_FALSE(fs::exists(dir / "hello.mp4.partial"));
+  // The frame count the command reports: 0.75 s of the clip at 30 fps.
+  const std::size_t at = r.err.find(" frames written to ");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const int frames = std::stoi(r.err.substr(r.err.rfind(' ', at - 1) + 1));
+  EXPECT_GE(frames, 22);
+  EXPECT_LE(frames, 23);
+  EXPECT_EQ(run_ffprobe(dir / "hello.mp4", "codec_name,width,height,nb_frames", "v:0"),
+            "h264\n160\n120\n" + std::to_string(frames) + "\n");
+  const std::string audio = run_ffprobe(dir / "hello.mp4", "codec_name,duration", "a:0");
+  ASSERT_EQ(audio.rfind("aac\n", 0), 0u) << audio;
+  // The same speech, spoken again to a WAV: the video's sound lasts as long, within one frame.
+  const RunResult wav = run_performer({"visemes", "--lang", "en-us", "--text", text, "--wav", (dir / "hello.wav").string(),
+                                       "-o", (dir / "w.csv").string()});
+  ASSERT_EQ(wav.exit_code, 0) << wav.err;
+  const double speech = wav_seconds(dir / "hello.wav");
+  EXPECT_GT(speech, 0.3);
+  EXPECT_NEAR(std::stod(audio.substr(4)), speech, 1.0 / 30.0);
+}
+
+TEST(PerformerCli, RenderBadInputIsOneLineAndNoOutput) {
+  const char* root = std::getenv("GPUJ2K_SOURCE_DIR");
+  if (root == nullptr) GTEST_SKIP() << "GPUJ2K_SOURCE_DIR is not set (run through ctest); skipping the CMU test";
+  const fs::path bvh = fs::path(root) / ".." / "shared" / "assets" / "bvh" / "cmu_131_01.bvh";
+  if (!fs::exists(bvh)) GTEST_SKIP() << "motion capture asset " << bvh << " not found; skipping";
+  const ScratchFolder dir("render_bad");
+  const std::string out = (dir / "out.mp4").string();
+  const std::vector<std::vector<std::string>> cases = {
+      {"render", "--bvh", (dir / "missing.bvh").string(), "-o", out},
+      {"render", "--bvh", bvh.string(), "--frames", "990:999", "-o", out},
+      {"render", "--bvh", bvh.string(), "--frames", "0:2", "--effects", "fog", "-o", out},
+      {"render", "--bvh", bvh.string(), "--frames", "0:2", "--size", "161x120", "-o", out},
+      {"render", "--bvh", bvh.string(), "--frames", "0:2", "-o", (dir / "no" / "such" / "dir" / "out.mp4").string()},
+      {"render", "--bvh", bvh.string(), "--frames", "0:2", "-o", (dir / "out.gif").string()},
+  };
+  for (const auto& args : cases) {
+    const RunResult bad = run_performer(args);
+    EXPECT_EQ(bad.exit_code, 1) << args[2] << " " << bad.err;
+    expect_one_error_line(bad);
+  }
+  EXPECT_TRUE(fs::is_empty(dir.path())) << "no output file, no temporary";
 }
 
 }  // namespace

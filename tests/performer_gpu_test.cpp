@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -12,6 +15,7 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "glcontext/context.h"
 #include "performer/bvh.h"
@@ -23,6 +27,8 @@
 #include "performer/local_transforms.h"
 #include "performer/procedural_head.h"
 #include "performer/render/gpu_deformer.h"
+#include "performer/render/renderer.h"
+#include "imageio/read.h"
 #include "performer/skinning.h"
 #include "performer/speech_visemes.h"
 #include "performer/viseme_library.h"
@@ -30,6 +36,8 @@
 #include "performer/weights_track.h"
 #include "performer/world_transforms.h"
 #include "support/shared_assets.h"
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -184,6 +192,153 @@ TEST(GpuDeformer, RefusesWrongCountsAndTooManyActiveTargets) {
   EXPECT_THROW(gpu.deform(weights, matrices), std::invalid_argument);
   std::vector<glm::vec3> p(3), n(3);
   EXPECT_THROW(gpu.read_back(p, n), std::invalid_argument);
+}
+
+// --- Rendering (section 3.7) ----------------------------------------------------------------------
+
+// A rendered frame shows the character where it is: the pixels that differ from the same scene
+// without the character (moved far out of sight) against the CPU-deformed mesh's triangles
+// projected with the same camera and filled at pixel centres. Robust to rasteriser differences:
+// only the overlap of the two silhouettes is asked for.
+TEST(Renderer, FrameShowsTheCharacterWhereTheCpuMeshProjects) {
+  REQUIRE_SHARED_FILE(test_support::bvh_asset("cmu_131_01.bvh"));
+  const Cmu& m = cmu("cmu_131_01.bvh");
+  const Character& c = m.character;
+  const performer::Skeleton& sk = m.bvh.skeleton;
+  constexpr int kW = 200, kH = 150;
+  GpuDeformer gpu(context(), c);
+  performer::render::RenderSettings settings;
+  settings.width = kW;
+  settings.height = kH;
+  settings.effects = performer::render::parse_effects("none");
+  performer::render::Renderer renderer(context(), c, settings);
+
+  CharacterFrame frame(c);
+  std::vector<glm::mat4> local(sk.joints.size()), world(sk.joints.size());
+  performer::local_transforms(sk, performer::frame_values(sk, m.bvh.motion, 300), local);
+  performer::world_transforms(sk, local, world);
+  performer::skinning_matrices(world, c.inverse_bind, frame.matrices);
+  performer::deform_character_parallel(frame.job(c));
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const glm::vec3& p : frame.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const performer::render::Camera camera =
+      performer::render::frame_figure(glm::vec3(world[0][3]), lo.y, hi.y - lo.y, glm::vec3(0, 0, 1), float(kW) / kH);
+
+  std::vector<std::uint8_t> with(kW * kH * 3), without(kW * kH * 3);
+  gpu.deform(frame.weights, frame.matrices);
+  renderer.render(gpu, camera, lo.y);
+  renderer.read_rgb(with);
+  // Deterministic: the same frame again gives the same bytes.
+  std::vector<std::uint8_t> again(kW * kH * 3);
+  renderer.render(gpu, camera, lo.y);
+  renderer.read_rgb(again);
+  EXPECT_EQ(again, with);
+  std::vector<glm::mat4> away = frame.matrices;
+  for (glm::mat4& a : away) a = glm::translate(glm::mat4(1.0f), camera.eye - 1e4f * (camera.target - camera.eye)) * a;
+  gpu.deform(frame.weights, away);
+  renderer.render(gpu, camera, lo.y);
+  renderer.read_rgb(without);
+
+  // The CPU mesh's silhouette.
+  const glm::mat4 vp = camera.projection(float(kW) / kH) * camera.view();
+  std::vector<std::uint8_t> cpu(kW * kH, 0);
+  auto to_pixel = [&](const glm::vec3& p) {
+    const glm::vec4 clip = vp * glm::vec4(p, 1.0f);
+    return glm::vec2((clip.x / clip.w * 0.5f + 0.5f) * kW, (0.5f - clip.y / clip.w * 0.5f) * kH);  // top row first
+  };
+  const auto& idx = c.mesh.indices;
+  for (std::size_t t = 0; t < idx.size(); t += 3) {
+    const glm::vec2 a = to_pixel(frame.positions[idx[t]]), b = to_pixel(frame.positions[idx[t + 1]]),
+                    d = to_pixel(frame.positions[idx[t + 2]]);
+    const int x0 = std::max(0, int(std::floor(std::min({a.x, b.x, d.x})))), x1 = std::min(kW - 1, int(std::ceil(std::max({a.x, b.x, d.x}))));
+    const int y0 = std::max(0, int(std::floor(std::min({a.y, b.y, d.y})))), y1 = std::min(kH - 1, int(std::ceil(std::max({a.y, b.y, d.y}))));
+    auto edge = [](glm::vec2 p, glm::vec2 q, glm::vec2 r) { return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x); };
+    const float area = edge(a, b, d);
+    if (area == 0.0f) continue;
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const glm::vec2 q(x + 0.5f, y + 0.5f);
+        const float w0 = edge(b, d, q) / area, w1 = edge(d, a, q) / area, w2 = edge(a, b, q) / area;
+        if (w0 >= 0 && w1 >= 0 && w2 >= 0) cpu[y * kW + x] = 1;
+      }
+  }
+  std::size_t both = 0, either = 0, shown = 0, projected = 0;
+  for (int i = 0; i < kW * kH; ++i) {
+    int difference = 0;
+    for (int k = 0; k < 3; ++k) difference = std::max(difference, std::abs(int(with[i * 3 + k]) - int(without[i * 3 + k])));
+    const bool rendered = difference > 12;
+    shown += rendered;
+    projected += cpu[i];
+    both += rendered && cpu[i];
+    either += rendered || cpu[i];
+  }
+  const double overlap = double(both) / double(either);
+  std::printf("silhouette: %zu pixels rendered, %zu projected, overlap %.3f\n", shown, projected, overlap);
+  EXPECT_GT(projected, std::size_t(kW * kH / 50));  // the character is a good part of the frame
+  EXPECT_GT(overlap, 0.85);
+}
+
+// The environment sphere is the cube map: looking along each horizontal axis with a 90 degree
+// field, each quadrant's mean colour (so orientation and mirroring too) is the face's, within a few
+// levels of rounding, filtering and multisampling.
+TEST(Renderer, EnvironmentShowsEachCubeFaceTheRightWayRound) {
+  const fs::path dir = test_support::shared_dir() / "assets" / "cubemap";
+  REQUIRE_SHARED_FILE(dir / "posx.jpg");
+  REQUIRE_SHARED_FILE(test_support::bvh_asset("cmu_131_01.bvh"));
+  const Cmu& m = cmu("cmu_131_01.bvh");
+  constexpr int kS = 64;
+  performer::render::RenderSettings settings;
+  settings.width = settings.height = kS;
+  settings.effects.environment = true;
+  settings.cubemap_dir = dir;
+  performer::render::Renderer renderer(context(), m.character, settings);
+  struct Face {
+    const char* name;
+    glm::vec3 direction;
+  };
+  const Face faces[] = {{"posx", {1, 0, 0}}, {"negx", {-1, 0, 0}}, {"posz", {0, 0, 1}}, {"negz", {0, 0, -1}}};
+  std::vector<std::uint8_t> rgb(kS * kS * 3);
+  for (const Face& f : faces) {
+    SCOPED_TRACE(f.name);
+    performer::render::Camera camera;
+    camera.eye = glm::vec3(0.0f);
+    camera.target = f.direction;
+    camera.vertical_fov = 1.5707964f;
+    renderer.render_environment(camera);
+    renderer.read_rgb(rgb);
+    const imageio::Image face = imageio::read_image((dir / (std::string(f.name) + ".jpg")).string());
+    // Means over quadrants (top-left, top-right, bottom-left, bottom-right), RGB, 0..255.
+    auto quadrants_of = [](auto&& at, int w, int h) {
+      std::array<glm::dvec3, 4> sum{};
+      std::array<double, 4> n{};
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          const int q = (y >= h / 2 ? 2 : 0) + (x >= w / 2 ? 1 : 0);
+          sum[q] += at(x, y);
+          n[q] += 1;
+        }
+      for (int q = 0; q < 4; ++q) sum[q] /= n[q];
+      return sum;
+    };
+    const auto rendered = quadrants_of(
+        [&](int x, int y) {
+          const std::uint8_t* p = &rgb[(y * kS + x) * 3];
+          return glm::dvec3(p[0], p[1], p[2]);
+        },
+        kS, kS);
+    const double scale = 255.0 / ((1 << face.bits_per_sample) - 1);
+    const auto expected = quadrants_of(
+        [&](int x, int y) { return glm::dvec3(face.at(x, y, 0), face.at(x, y, 1), face.at(x, y, 2)) * scale; },
+        face.width, face.height);
+    // These files keep each face bottom row first (the sky at the bottom of the side faces), and a
+    // viewer inside an OpenGL cube map sees a face's s axis run right to left (the cube map
+    // convention is left-handed): the view is the file turned by 180 degrees, quadrant q showing
+    // the file's quadrant 3 - q, with the sky above the horizon.
+    for (int q = 0; q < 4; ++q)
+      for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(rendered[q][k], expected[3 - q][k], 6.0) << "quadrant " << q << " channel " << k;
+    EXPECT_GT(rendered[0].z + rendered[1].z, rendered[2].z + rendered[3].z) << "the sky (blue) above";
+  }
 }
 
 }  // namespace
