@@ -58,8 +58,15 @@ bvh=../shared/assets/bvh/cmu_131_01.bvh
 if [ -f "$bvh" ]; then
   "$bin/performer" info --bvh "$bvh"
   "$bin/performer" pose --bvh "$bvh" --frames 0:29 --lang en-us --text "Hello, I am the performer" -o "$work/pose_frames"
+  echo "== The performer rendered on the GPU (equation 3.20 in a vertex shader, section 3.7's effects), with its speech"
+  cubemap=../shared/assets/cubemap
+  effects=hair
+  if [ -f "$cubemap/posx.jpg" ]; then effects=env,hair; fi
+  "$bin/performer" render --bvh "$bvh" --frames 0:479 --lang en-us --text "Hello, I am your virtual performer. Watch me walk." \
+    --effects "$effects" --size 640x480 -o "$work/performer.mp4"
+  "$bin/performer" render --bvh "$bvh" --frames 0:239 --effects snow,toon --size 640x480 -o "$work/performer_toon_snow.mp4"
 else
-  echo "note: $bvh not found; skipping performer pose"
+  echo "note: $bvh not found; skipping performer pose and render"
 fi
 "$bin/performer_bench"
 
