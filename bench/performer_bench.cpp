@@ -1,5 +1,6 @@
-// performer_bench: vertices per second of the CPU reference of equation 3.20 (face deformation of
-// the head range, then SSD of every vertex; thesis 3.6), the baseline a GPU vertex shader is to beat.
+// performer_bench: vertices per second of equation 3.20 (face deformation of the head range, then
+// SSD of every vertex; thesis 3.6) on the CPU and in the GPU's vertex shader, and Table 3.9: frames
+// per second of the rendered character with each effect of section 3.7, GPU or CPU deformation.
 //
 //   performer_bench [BVH]   (default: ../shared/assets/bvh/cmu_131_01.bvh from GPUJ2K_SOURCE_DIR)
 //
@@ -15,12 +16,16 @@
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <utility>
 #include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "glcontext/context.h"
 #include "performer/bvh.h"
+#include "performer/render/gpu_deformer.h"
+#include "performer/render/renderer.h"
 #include "performer/character.h"
 #include "performer/character_deform.h"
 #include "performer/local_transforms.h"
@@ -139,6 +144,79 @@ void run(const char* label, const Character& c, const std::vector<glm::mat4>& ma
               threads == 1 ? " " : "s", s * 1e3, c.vertex_count() / s * 1e-6, repetitions);
 }
 
+// Table 3.9: frames per second of the character drawn with each effect, deformed on the GPU
+// (equation 3.20 in the vertex shader) or on the CPU and uploaded, into the same renderer. A frame
+// is timed to glFinish (drawn, not read back).
+void table_3_9(glc::Context& context, const Character& c, const std::vector<glm::mat4>& matrices,
+               const std::filesystem::path& cubemap, unsigned threads) {
+  performer::render::GpuDeformer gpu(context, c);
+  performer::CharacterFrame frame(c);
+  frame.matrices = matrices;
+  set_weights(c, frame.weights);
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const glm::vec3& p : c.mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  performer::deform_character_parallel(frame.job(c), threads);
+  glm::vec3 centre(0.0f);
+  for (const glm::vec3& p : frame.positions) centre += p;
+  centre /= static_cast<float>(c.vertex_count());
+  const char* effect_sets[] = {"none", "env", "hair", "snow", "toon", "env,hair,snow"};
+  for (const auto& [w, h] : {std::pair{640, 480}, std::pair{1280, 720}})
+    for (const char* effects : effect_sets) {
+      performer::render::RenderSettings settings;
+      settings.width = w;
+      settings.height = h;
+      settings.effects = performer::render::parse_effects(effects);
+      settings.cubemap_dir = cubemap;
+      if (settings.effects.environment && !std::filesystem::exists(cubemap / "posx.jpg")) continue;
+      performer::render::Renderer renderer(context, c, settings);
+      const performer::render::Camera camera = performer::render::frame_figure(
+          centre, lo.y + (centre.y - (lo.y + hi.y) / 2), hi.y - lo.y, glm::vec3(0, 0, 1), float(w) / float(h));
+      performer::render::Snow snow(1500, centre, 1.6f * (hi.y - lo.y), lo.y, 1.4f * (hi.y - lo.y));
+      for (const bool on_gpu : {true, false}) {
+        auto once = [&] {
+          if (on_gpu) {
+            gpu.deform(frame.weights, frame.matrices);
+          } else {
+            performer::deform_character_parallel(frame.job(c), threads);
+            gpu.upload(frame.positions, frame.normals);
+          }
+          snow.step(1.0f / 30.0f);
+          renderer.render(gpu, camera, lo.y, &snow);
+          context.gl().glFinish();
+        };
+        for (int i = 0; i < 3; ++i) once();
+        std::vector<double> seconds;
+        for (int i = 0; i < 15; ++i) {
+          const auto start = std::chrono::steady_clock::now();
+          once();
+          seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        }
+        const double s = median(seconds);
+        std::printf("%4dx%-4d %-14s %s deformation: %7.2f ms/frame %7.1f fps\n", w, h, effects,
+                    on_gpu ? "GPU" : "CPU", s * 1e3, 1.0 / s);
+      }
+    }
+}
+
+// The million-vertex row: equation 3.20 alone on the GPU (transform feedback, no drawing), to
+// glFinish.
+void million_on_gpu(glc::Context& context, const Character& c, const std::vector<glm::mat4>& matrices) {
+  performer::render::GpuDeformer gpu(context, c);
+  std::vector<float> weights(c.targets.size());
+  set_weights(c, weights);
+  for (int i = 0; i < 3; ++i) gpu.deform(weights, matrices), context.gl().glFinish();
+  std::vector<double> seconds;
+  for (int i = 0; i < 15; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    gpu.deform(weights, matrices);
+    context.gl().glFinish();
+    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  const double s = median(seconds);
+  std::printf("(b) on the GPU: %zu vertices, %8.3f ms/frame  %7.1f Mvertices/s  %6.1f fps\n", c.vertex_count(), s * 1e3,
+              c.vertex_count() / s * 1e-6, 1.0 / s);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -182,6 +260,14 @@ int main(int argc, char** argv) {
     std::printf("(b) one million: the (a) streams replicated %zu times\n", copies);
     run("(b)", million, matrices, 1, 15);
     run("(b)", million, matrices, hw, 15);
+
+    // The GPU path, on whatever renderer the GL layer finds (named on the first line).
+    const auto context = glc::Context::create(glc::platform_from_env());
+    std::printf("GPU: %s\n", context->description().c_str());
+    million_on_gpu(*context, million, matrices);
+    std::printf("Table 3.9: frames per second, (a) character, every effect, GPU or CPU (%u threads) deformation\n", hw);
+    table_3_9(*context, thesis, matrices,
+              std::filesystem::path(root ? root : GPUJ2K_SOURCE_DIR_DEFAULT) / ".." / "shared" / "assets" / "cubemap", hw);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "performer_bench: %s\n", e.what());
     return 1;

@@ -212,6 +212,22 @@ void GpuDeformer::deform(std::span<const float> face_weights, std::span<const gl
   glc::check(gl, "GpuDeformer::deform");
 }
 
+void GpuDeformer::upload(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals) {
+  if (positions.size() != vertex_count_ || normals.size() != vertex_count_)
+    throw std::invalid_argument("GpuDeformer::upload: " + std::to_string(positions.size()) + " positions and " +
+                                std::to_string(normals.size()) + " normals for " + std::to_string(vertex_count_) +
+                                " vertices");
+  std::vector<float> interleaved(vertex_count_ * 6);
+  for (std::size_t v = 0; v < vertex_count_; ++v) {
+    std::memcpy(&interleaved[v * 6], &positions[v], 3 * sizeof(float));
+    std::memcpy(&interleaved[v * 6 + 3], &normals[v], 3 * sizeof(float));
+  }
+  const glc::GlApi& gl = context_->gl();
+  gl.glBindBuffer(GL_ARRAY_BUFFER, output_.id());
+  gl.glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(interleaved.size() * sizeof(float)), interleaved.data());
+  glc::check(gl, "GpuDeformer::upload");
+}
+
 void GpuDeformer::read_back(std::span<glm::vec3> positions, std::span<glm::vec3> normals) const {
   if (positions.size() != vertex_count_ || normals.size() != vertex_count_)
     throw std::invalid_argument("GpuDeformer::read_back: room for " + std::to_string(positions.size()) + " positions and " +

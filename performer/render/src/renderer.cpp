@@ -124,15 +124,17 @@ Renderer::Renderer(glc::Context& context, const Character& character, const Rend
   const auto& indices = character.mesh.indices;
   indices_ = glc::Buffer::create(gl, GL_ELEMENT_ARRAY_BUFFER, indices.size() * sizeof(std::uint32_t), indices.data(),
                                  GL_STATIC_DRAW);
-  // The head's triangles follow the body's (build_character merges them so).
-  head_index_first_ = indices.size();
-  for (std::size_t t = 0; t + 2 < indices.size(); t += 3)
-    if (indices[t] >= character.head_first && indices[t + 1] >= character.head_first && indices[t + 2] >= character.head_first) {
-      head_index_first_ = t;
-      break;
-    }
   const std::vector<glm::vec4> hair = hair_attributes(character);
   hair_attributes_ = glc::Buffer::create(gl, GL_ARRAY_BUFFER, hair.size() * sizeof(glm::vec4), hair.data(), GL_STATIC_DRAW);
+  // The shells are drawn over the scalp's triangles only (any corner with hair), kept in their own
+  // index buffer: every shell re-draws them, and the rest of the head would only be discarded.
+  std::vector<std::uint32_t> scalp;
+  for (std::size_t t = 0; t + 2 < indices.size(); t += 3)
+    if (hair[indices[t]].w > 0.0f || hair[indices[t + 1]].w > 0.0f || hair[indices[t + 2]].w > 0.0f)
+      scalp.insert(scalp.end(), {indices[t], indices[t + 1], indices[t + 2]});
+  scalp_index_count_ = scalp.size();
+  scalp_indices_ = glc::Buffer::create(gl, GL_ELEMENT_ARRAY_BUFFER, std::max<std::size_t>(scalp.size(), 1) * sizeof(std::uint32_t),
+                                       scalp.empty() ? nullptr : scalp.data(), GL_STATIC_DRAW);
   character_vao_ = glc::VertexArray::create(gl);
   sky_vao_ = glc::VertexArray::create(gl);
   static constexpr std::array<float, 8> kCorners = {-1, -1, 1, -1, -1, 1, 1, 1};
@@ -257,16 +259,16 @@ void Renderer::render(const GpuDeformer& deformed, const Camera& camera, float f
     gl.glCullFace(GL_BACK);
   }
 
-  if (fx.hair && head_index_first_ < character_->mesh.indices.size()) {
-    // Shells over the head, scalp outwards, alpha-blended; depth tested, not written, so that the
+  if (fx.hair && scalp_index_count_ > 0) {
+    // Shells over the scalp, inside outwards, alpha-blended; depth tested, not written, so that the
     // shells do not hide each other.
-    const auto head_indices = static_cast<GLsizei>(character_->mesh.indices.size() - head_index_first_);
     glm::vec3 lo(1e30f), hi(-1e30f);
     for (std::size_t v = character_->head_first; v < character_->vertex_count(); ++v) {
       lo = glm::min(lo, character_->mesh.positions[v]);
       hi = glm::max(hi, character_->mesh.positions[v]);
     }
     const float hair_length = 0.09f * (hi.y - lo.y);
+    gl.glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, scalp_indices_.id());
     gl.glEnable(GL_BLEND);
     gl.glDepthMask(GL_FALSE);
     gl.glDisable(GL_CULL_FACE);
@@ -276,11 +278,11 @@ void Renderer::render(const GpuDeformer& deformed, const Camera& camera, float f
       gl.glUniform3fv(hair_program_.uniform("u_light"), 1, glm::value_ptr(light));
       gl.glUniform1f(hair_program_.uniform("u_layer"), layer);
       gl.glUniform1f(hair_program_.uniform("u_strands"), kHairStrandsPerMetre);
-      gl.glDrawElements(GL_TRIANGLES, head_indices, GL_UNSIGNED_INT,
-                        offset(head_index_first_ * sizeof(std::uint32_t)));
+      gl.glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(scalp_index_count_), GL_UNSIGNED_INT, nullptr);
     }
     gl.glDepthMask(GL_TRUE);
     gl.glDisable(GL_BLEND);
+    gl.glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.id());
   }
   gl.glDisable(GL_CULL_FACE);
 

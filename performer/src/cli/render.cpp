@@ -123,6 +123,8 @@ void run_render(const RenderCommand& c, std::FILE* log) {
   if (effects.environment && !std::filesystem::is_directory(c.cubemap_dir))
     throw std::invalid_argument("the env effect needs a cube map folder (--cubemap), \"" + c.cubemap_dir.string() +
                                 "\" is not one");
+  // The output first: a bad path fails before the expensive part, and before any log line.
+  FrameSink sink(c, c.speech);
   // Output frames at c.fps over the chosen span of the clip (its frames at their own rate).
   const double duration = (last - c.first_frame) * bvh.motion.frame_time;
   const int out_frames = std::max(1, static_cast<int>(std::floor(duration * c.fps + 1e-9)) + 1);
@@ -177,7 +179,6 @@ void run_render(const RenderCommand& c, std::FILE* log) {
   std::vector<float> face_weights(character.targets.size(), 0.0f);
   std::vector<glm::mat4> local(skeleton.joints.size()), world(skeleton.joints.size()), matrices(skeleton.joints.size());
   std::vector<std::uint8_t> rgb(static_cast<std::size_t>(c.width) * static_cast<std::size_t>(c.height) * 3);
-  FrameSink sink(c, c.speech);
   const bool terminal = ::isatty(::fileno(log)) != 0;
   const auto start = std::chrono::steady_clock::now();
   glm::vec3 tracked(0.0f), facing(0.0f, 0.0f, 1.0f);

@@ -44,6 +44,10 @@ class GpuDeformer {
   // more than kFaceSlots nonzero face weights.
   void deform(std::span<const float> face_weights, std::span<const glm::mat4> matrices);
 
+  // Replaces the result with positions and normals computed elsewhere (the CPU jobs), so that the
+  // renderer can draw a CPU-deformed frame the same way: the comparison of Table 3.9.
+  void upload(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals);
+
   // The last frame's result, read back from the GPU: vertex_count() positions and normals.
   void read_back(std::span<glm::vec3> positions, std::span<glm::vec3> normals) const;
 

@@ -55,11 +55,11 @@ class Renderer {
   const Character* character_;
   RenderSettings settings_;
   int samples_ = 0;
-  std::size_t head_index_first_ = 0;  // where the head's triangles start in the index stream
+  std::size_t scalp_index_count_ = 0;  // the triangles the hair shells are drawn over
   glc::Renderbuffer color_, depth_, resolved_;
   glc::Framebuffer scene_fbo_, resolve_fbo_;
   glc::Program character_program_, outline_program_, hair_program_, sky_program_, floor_program_, snow_program_;
-  glc::Buffer indices_, hair_attributes_, snow_instances_, floor_corners_;
+  glc::Buffer indices_, scalp_indices_, hair_attributes_, snow_instances_, floor_corners_;
   glc::VertexArray character_vao_, sky_vao_, floor_vao_, snow_vao_;
   glc::Texture cubemap_;
 };
