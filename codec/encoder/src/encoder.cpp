@@ -110,10 +110,12 @@ Tier1Target tier1_target(const Tile& tile, const EncodeParams& params, double sa
   return {Tier1Target::Kind::Distortion, 0.8 * goal * share};
 }
 
-// Tier-2: every packet of the tile in progression order. `passes[b]` lists block b's cumulative
-// passes after each layer.
-std::vector<std::uint8_t> tile_body(const CodedTile& coded, const EncodeParams& params,
-                                    const std::vector<std::vector<int>>& passes, int layers) {
+// Tier-2: every packet of the tile in progression order, appended to `body` (only the packet
+// headers when !copy_body). `passes[b]` lists block b's cumulative passes after each layer.
+// Returns the packets' total length.
+std::size_t write_tile_packets(const CodedTile& coded, const EncodeParams& params,
+                               const std::vector<std::vector<int>>& passes, int layers, std::vector<std::uint8_t>& body,
+                               bool copy_body) {
   const Tile& tile = coded.tile;
 
   std::vector<t2::ComponentGeometry> geometry;
@@ -143,6 +145,20 @@ std::vector<std::uint8_t> tile_body(const CodedTile& coded, const EncodeParams& 
     }
     geometry.push_back(std::move(cg));
   }
+  std::size_t total = 0;
+  std::uint16_t sequence = 0;
+  for (const t2::PacketId& id :
+       t2::progression(to_t2(params.order), layers, tile.rect.x0, tile.rect.y0, tile.rect.x1, tile.rect.y1, geometry)) {
+    total += writers[static_cast<std::size_t>(id.component)][static_cast<std::size_t>(id.resolution)]
+                    [static_cast<std::size_t>(id.precinct)]
+                        .write_packet(id.layer, params.sop, params.eph, sequence++, body, copy_body);
+    if (!copy_body) body.clear();  // only the lengths are wanted
+  }
+  return total;
+}
+
+std::vector<std::uint8_t> tile_body(const CodedTile& coded, const EncodeParams& params,
+                                    const std::vector<std::vector<int>>& passes, int layers) {
   // Room for every byte the packets carry, so that the body is not copied as it grows; headers
   // take a few bytes a block at most.
   std::size_t data_bytes = 0;
@@ -152,11 +168,7 @@ std::vector<std::uint8_t> tile_body(const CodedTile& coded, const EncodeParams& 
   }
   std::vector<std::uint8_t> body;
   body.reserve(data_bytes + 4096);
-  std::uint16_t sequence = 0;
-  for (const t2::PacketId& id :
-       t2::progression(to_t2(params.order), layers, tile.rect.x0, tile.rect.y0, tile.rect.x1, tile.rect.y1, geometry))
-    writers[static_cast<std::size_t>(id.component)][static_cast<std::size_t>(id.resolution)][static_cast<std::size_t>(id.precinct)]
-        .write_packet(id.layer, params.sop, params.eph, sequence++, body);
+  write_tile_packets(coded, params, passes, layers, body, true);
   return body;
 }
 
@@ -210,10 +222,26 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
     if (format == FileFormat::Jp2) return cs::wrap_jp2(codestream, cs::jp2_header_for(header.siz));
     return codestream;
   };
+  // Rate control's trial files: the main header, each tile-part's SOT and SOD, EOC and any JP2
+  // boxes do not depend on the selection, so they are measured once with empty tile bodies, and a
+  // trial adds its packets' lengths, counted without copying the data.
+  const std::size_t fixed_bytes = [&] {
+    cs::CodestreamWriter writer(header);
+    for (const CodedTile& tile : tiles) writer.add_tile_part(static_cast<unsigned>(tile.tile.index), 0, 1, {});
+    const std::vector<std::uint8_t> codestream = writer.finish();
+    return format == FileFormat::Jp2 ? cs::wrap_jp2(codestream, cs::jp2_header_for(header.siz)).size() : codestream.size();
+  }();
+  const FileSizer file_size = [&](const LayerPasses& trial) {
+    std::size_t bytes = fixed_bytes;
+    std::vector<std::uint8_t> scratch;
+    for (std::size_t t = 0; t < tiles.size(); ++t) bytes += write_tile_packets(tiles[t], params, trial[t], layers, scratch, false);
+    // A JP2 codestream box past 4 GiB takes a longer header: measure such a file whole.
+    return bytes < 0xFFFF0000u ? bytes : assemble(trial).size();
+  };
   const LayerPasses passes = params.layers.empty()
                                  ? every_pass(tiles, layers)
                                  : control_rate(tiles, RateControlInputs{image, plan, params, samples, peak, pool},
-                                                assemble, report);
+                                                file_size, report);
 
   // Stage 6: tier-2 and the codestream.
   const auto tier2_start = Clock::now();

@@ -74,11 +74,11 @@ LayerPasses select_for_psnr(const std::vector<CodedTile>& tiles, const rate::Rat
 // Byte targets for the whole file, headers and packet headers included: bisect a common scale of
 // the layers' data budgets until the file fits the last target, as full as it gets.
 LayerPasses select_for_bytes(const std::vector<CodedTile>& tiles, const rate::RateAllocator& allocator,
-                             std::size_t block_count, const RateControlInputs& in, const Assembler& assemble) {
+                             std::size_t block_count, const RateControlInputs& in, const FileSizer& file_size) {
   const EncodeParams& params = in.params;
   const auto target = static_cast<std::size_t>(params.layers.back().value);
   const std::vector<std::vector<int>> none(params.layers.size(), std::vector<int>(block_count, 0));
-  const std::size_t overhead = assemble(per_tile(tiles, none)).size();
+  const std::size_t overhead = file_size(per_tile(tiles, none));
   if (overhead > target)
     throw EncodeError("the byte target " + std::to_string(target) + " is below the " + std::to_string(overhead) +
                       " bytes the headers alone take");
@@ -88,22 +88,42 @@ LayerPasses select_for_bytes(const std::vector<CodedTile>& tiles, const rate::Ra
       budgets.push_back(static_cast<std::size_t>(std::max(0.0, (t.value - static_cast<double>(overhead)) * scale)));
     return allocator.layers(budgets);
   };
-  // Packet headers grow with the data, so the scale ends a little below 1. Stop once the file is
-  // within 0.005 % of the target (or a few bytes): every byte left unspent is quality given away,
-  // and a trial assembly costs little next to tier-1.
-  double lo = 0, hi = 1.05;
+  // Packet headers grow with the data, so the scale ends a little below 1. The file's size grows
+  // with the scale in small steps, close to linearly, so each trial aims by interpolating between
+  // the closest scales known to fit and to overflow (regula falsi, Illinois variant: a side kept
+  // twice in a row has its excess halved, so the bracket closes from both ends), where halving the
+  // bracket needed some 15 trials. Stop once the file is within 0.005 % of the target (or a few
+  // bytes): every byte left unspent is quality given away.
   std::vector<std::vector<int>> best = none;
   std::size_t best_size = overhead;
   const std::size_t close_enough = target - std::max<std::size_t>(target / 20000, 4);
+  const double aim = 0.5 * (static_cast<double>(close_enough) + static_cast<double>(target));
+  double lo = 0, hi = 1.05;                                    // fits at lo, overflows at hi
+  double excess_lo = static_cast<double>(overhead) - aim, excess_hi = 0;
+  bool hi_known = false;
+  int kept_side = 0;  // +1: lo moved last time, -1: hi moved
   for (int iteration = 0; iteration < 40 && best_size < close_enough; ++iteration) {
-    const double mid = 0.5 * (lo + hi);
+    double mid = 0.5 * (lo + hi);
+    if (hi_known && excess_hi > excess_lo) {
+      mid = lo + (hi - lo) * (-excess_lo) / (excess_hi - excess_lo);
+      const double margin = 1e-3 * (hi - lo);
+      mid = std::clamp(mid, lo + margin, hi - margin);
+    } else if (!hi_known) {
+      mid = hi;  // first, the top of the bracket: if everything fits, that is the answer
+    }
     auto candidate = plan_for(mid);
-    const std::size_t size = assemble(per_tile(tiles, candidate)).size();
+    const std::size_t size = file_size(per_tile(tiles, candidate));
+    const double excess = static_cast<double>(size) - aim;
     if (size <= target) {
-      lo = mid;
       if (size >= best_size) best_size = size, best = std::move(candidate);
+      if (!hi_known) break;  // the whole budget range fits
+      lo = mid, excess_lo = excess;
+      if (kept_side == 1) excess_hi *= 0.5;
+      kept_side = 1;
     } else {
-      hi = mid;
+      hi = mid, excess_hi = excess, hi_known = true;
+      if (kept_side == -1) excess_lo *= 0.5;
+      kept_side = -1;
     }
   }
   return per_tile(tiles, best);
@@ -136,7 +156,7 @@ LayerPasses every_pass(const std::vector<CodedTile>& tiles, int layers) {
   return passes;
 }
 
-LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs& in, const Assembler& assemble,
+LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs& in, const FileSizer& file_size,
                          EncodeReport& report) {
   const auto start = Clock::now();
   double recode_ms = 0;
@@ -152,7 +172,7 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
     const rate::RateAllocator allocator(hulls);
     passes = in.params.layers[0].kind == LayerTarget::Kind::Psnr
                  ? select_for_psnr(tiles, allocator, hulls, energy, in)
-                 : select_for_bytes(tiles, allocator, hulls.size(), in, assemble);
+                 : select_for_bytes(tiles, allocator, hulls.size(), in, file_size);
     const auto starved = starved_blocks(tiles, passes);
     if (starved.empty() || round == 2) break;  // recoded blocks have every pass: twice is enough
     report.recoded_blocks += starved.size();

@@ -86,8 +86,9 @@ bool PrecinctPacketWriter::packet_is_empty(int layer) const {
   return true;
 }
 
-void PrecinctPacketWriter::write_packet(int layer, bool sop, bool eph, std::uint16_t packet_sequence_number,
-                                        std::vector<std::uint8_t>& out) {
+std::size_t PrecinctPacketWriter::write_packet(int layer, bool sop, bool eph, std::uint16_t packet_sequence_number,
+                                               std::vector<std::uint8_t>& out, bool copy_body) {
+  const std::size_t start = out.size();
   if (layer != next_layer_)
     throw std::logic_error("PrecinctPacketWriter: layer " + std::to_string(layer) + " written, expected " +
                            std::to_string(next_layer_));
@@ -124,9 +125,13 @@ void PrecinctPacketWriter::write_packet(int layer, bool sop, bool eph, std::uint
   // The body: the blocks' bytes straight from their codewords, in the header's order.
   std::size_t body_bytes = 0;
   for (const auto& piece : body_) body_bytes += piece.size();
-  out.reserve(out.size() + body_bytes);
-  for (const auto& piece : body_) out.insert(out.end(), piece.begin(), piece.end());
+  const std::size_t header_bytes = out.size() - start;
+  if (copy_body) {
+    out.reserve(out.size() + body_bytes);
+    for (const auto& piece : body_) out.insert(out.end(), piece.begin(), piece.end());
+  }
   ++next_layer_;
+  return header_bytes + body_bytes;
 }
 
 void PrecinctPacketWriter::write_block_header(const CodeBlockCoding& plan, BandState& band, int x, int y, int layer,

@@ -19,8 +19,10 @@ using LayerPasses = std::vector<std::vector<std::vector<int>>>;
 // Every pass of every block in every layer: the selection without a target.
 LayerPasses every_pass(const std::vector<CodedTile>& tiles, int layers);
 
-// The codestream (or file) a selection makes: rate control assembles trial files to measure them.
+// The codestream (or file) a selection makes.
 using Assembler = std::function<std::vector<std::uint8_t>(const LayerPasses&)>;
+// The length of that file, exactly, as rate control's byte targets measure trial selections.
+using FileSizer = std::function<std::size_t(const LayerPasses&)>;
 
 // What rate control takes from the encode around it.
 struct RateControlInputs {
@@ -39,7 +41,7 @@ struct RateControlInputs {
 // `pool` (tiles are updated; at most two rounds) and the allocation repeated, which gives the
 // selection coding every pass would. Times go to report.times (rate control; recoding as tier-1)
 // and the recoded blocks are counted in report.recoded_blocks.
-LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs& in, const Assembler& assemble,
+LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs& in, const FileSizer& file_size,
                          EncodeReport& report);
 
 }  // namespace codec

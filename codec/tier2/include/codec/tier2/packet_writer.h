@@ -35,8 +35,10 @@ class PrecinctPacketWriter {
 
   // Appends the packet for `layer` (layers must be written in order 0,1,2...): [SOP] header [EPH]
   // body. `packet_sequence_number` is SOP's Nsop (the packet's index in the tile, modulo 2^16).
-  void write_packet(int layer, bool sop, bool eph, std::uint16_t packet_sequence_number,
-                    std::vector<std::uint8_t>& out);
+  // With copy_body false the body is left out of `out` (rate control's trial sizes need only its
+  // length). Returns the packet's length either way.
+  std::size_t write_packet(int layer, bool sop, bool eph, std::uint16_t packet_sequence_number,
+                           std::vector<std::uint8_t>& out, bool copy_body = true);
 
  private:
   struct BlockState {
