@@ -191,6 +191,26 @@ void expect_same_mesh(const TriangleMesh& a, const TriangleMesh& b, float tolera
 
 // --- The CMU skeletons --------------------------------------------------------------------------
 
+// A valid binding: the streams agree, every vertex's weights are non-negative, sum to 1 and name
+// no end site, and the rest pose gives the mesh back.
+void expect_bound_to(const SkinnedMesh& skinned, const Skeleton& sk, const TriangleMesh& mesh) {
+  ASSERT_EQ(performer::skinned_mesh_problem(skinned), "");
+  const auto slots = static_cast<std::size_t>(skinned.influences);
+  for (std::size_t v = 0; v < skinned.mesh.positions.size(); ++v) {
+    float sum = 0.0f;
+    for (std::size_t k = 0; k < slots; ++k) {
+      const float w = skinned.joint_weights[v * slots + k];
+      ASSERT_GE(w, 0.0f);
+      sum += w;
+      if (w > 0.0f) {
+        ASSERT_FALSE(sk.joints[skinned.joint_indices[v * slots + k]].end_site) << "vertex " << v;
+      }
+    }
+    ASSERT_NEAR(sum, 1.0f, 1e-5f) << "vertex " << v;
+  }
+  expect_same_mesh(pose(skinned, rest_world(sk)), mesh, 1e-4f, "rest pose");
+}
+
 struct CmuBody {
   performer::Bvh bvh;
   BodyMesh body;
@@ -282,21 +302,7 @@ TEST_P(CmuBodyTest, SsdWeightsValidAndRestPoseReproducesMesh) {
   const CmuBody& cmu = cmu_body(GetParam());
   const Skeleton& sk = cmu.bvh.skeleton;
   const SkinnedMesh skinned = performer::bind_to_skeleton(sk, cmu.body.mesh);
-  ASSERT_EQ(performer::skinned_mesh_problem(skinned), "");
-  const auto slots = static_cast<std::size_t>(skinned.influences);
-  for (std::size_t v = 0; v < skinned.mesh.positions.size(); ++v) {
-    float sum = 0.0f;
-    for (std::size_t k = 0; k < slots; ++k) {
-      const float w = skinned.joint_weights[v * slots + k];
-      ASSERT_GE(w, 0.0f);
-      sum += w;
-      if (w > 0.0f) {
-        ASSERT_FALSE(sk.joints[skinned.joint_indices[v * slots + k]].end_site) << "vertex " << v;
-      }
-    }
-    ASSERT_NEAR(sum, 1.0f, 1e-5f) << "vertex " << v;
-  }
-  expect_same_mesh(pose(skinned, rest_world(sk)), cmu.body.mesh, 1e-4f, "rest pose");
+  expect_bound_to(skinned, sk, cmu.body.mesh);
 
   // A frame of the motion carries the skin along with the skeleton: every vertex stays within the
   // posed joints' bounds, widened by the thickest capsule and a margin.
@@ -369,21 +375,7 @@ TEST_P(CmuBodyTest, SkinHoldsTogetherInMotion) {
   const CmuBody& cmu = cmu_body(GetParam());
   const Skeleton& sk = cmu.bvh.skeleton;
   const SkinnedMesh skinned = performer::bind_body_to_skeleton(sk, cmu.body);
-  ASSERT_EQ(performer::skinned_mesh_problem(skinned), "");
-  const auto slots = static_cast<std::size_t>(skinned.influences);
-  for (std::size_t v = 0; v < skinned.mesh.positions.size(); ++v) {
-    float sum = 0.0f;
-    for (std::size_t k = 0; k < slots; ++k) {
-      const float w = skinned.joint_weights[v * slots + k];
-      ASSERT_GE(w, 0.0f);
-      sum += w;
-      if (w > 0.0f) {
-        ASSERT_FALSE(sk.joints[skinned.joint_indices[v * slots + k]].end_site) << "vertex " << v;
-      }
-    }
-    ASSERT_NEAR(sum, 1.0f, 1e-5f) << "vertex " << v;
-  }
-  expect_same_mesh(pose(skinned, rest_world(sk)), cmu.body.mesh, 1e-4f, "rest pose");
+  expect_bound_to(skinned, sk, cmu.body.mesh);
 
   const Stretch s = stretch_in_motion(cmu, skinned);
   std::printf("%s, skeleton-aware weights: %d frames, longest edge %.2fx its rest length (frame %d), at most %.3f %% "

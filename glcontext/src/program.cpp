@@ -2,6 +2,7 @@
 #include "glcontext/error.h"
 #include "glcontext/resources.h"
 
+#include <initializer_list>
 #include <string>
 
 namespace glc {
@@ -62,25 +63,23 @@ Shader Shader::compile(const GlApi& gl, GLenum stage, std::string_view source,
   return shader;
 }
 
-Program Program::link(const GlApi& gl, std::string_view vertex_src,
-                      std::string_view fragment_src, std::string_view label) {
-  const Shader vs = Shader::compile(gl, GL_VERTEX_SHADER, vertex_src, label);
-  const Shader fs = Shader::compile(gl, GL_FRAGMENT_SHADER, fragment_src, label);
-
+// Links the compiled stages into a new program; `before_link` runs with the shaders attached (to
+// name transform feedback varyings, say).
+template <class BeforeLink>
+Program Program::link_stages(const GlApi& gl, std::initializer_list<const Shader*> stages, std::string_view label,
+                             BeforeLink&& before_link) {
   const GLuint id = gl.glCreateProgram();
   if (id == 0) {
     check(gl, "glCreateProgram");
     throw GlError("glCreateProgram returned 0 for '" + std::string(label) + "'");
   }
   Program program(gl, id);
-  gl.glAttachShader(id, vs.id());
-  gl.glAttachShader(id, fs.id());
+  for (const Shader* s : stages) gl.glAttachShader(id, s->id());
+  before_link(id);
   gl.glLinkProgram(id);
-  // Detach so the shader objects are really freed when vs/fs go out of scope
-  // (attached shaders are only flagged for deletion).
-  gl.glDetachShader(id, vs.id());
-  gl.glDetachShader(id, fs.id());
-
+  // Detach so the shader objects are really freed when they go out of scope (attached shaders
+  // are only flagged for deletion).
+  for (const Shader* s : stages) gl.glDetachShader(id, s->id());
   GLint ok = GL_FALSE;
   gl.glGetProgramiv(id, GL_LINK_STATUS, &ok);
   if (ok != GL_TRUE) {
@@ -90,26 +89,19 @@ Program Program::link(const GlApi& gl, std::string_view vertex_src,
   return program;
 }
 
+Program Program::link(const GlApi& gl, std::string_view vertex_src,
+                      std::string_view fragment_src, std::string_view label) {
+  const Shader vs = Shader::compile(gl, GL_VERTEX_SHADER, vertex_src, label);
+  const Shader fs = Shader::compile(gl, GL_FRAGMENT_SHADER, fragment_src, label);
+  return link_stages(gl, {&vs, &fs}, label, [](GLuint) {});
+}
+
 Program Program::link_capture(const GlApi& gl, std::string_view vertex_src, std::span<const char* const> varyings,
                               std::string_view label) {
   const Shader vs = Shader::compile(gl, GL_VERTEX_SHADER, vertex_src, label);
-  const GLuint id = gl.glCreateProgram();
-  if (id == 0) {
-    check(gl, "glCreateProgram");
-    throw GlError("glCreateProgram returned 0 for '" + std::string(label) + "'");
-  }
-  Program program(gl, id);
-  gl.glAttachShader(id, vs.id());
-  gl.glTransformFeedbackVaryings(id, static_cast<GLsizei>(varyings.size()), varyings.data(), GL_INTERLEAVED_ATTRIBS);
-  gl.glLinkProgram(id);
-  gl.glDetachShader(id, vs.id());
-  GLint ok = GL_FALSE;
-  gl.glGetProgramiv(id, GL_LINK_STATUS, &ok);
-  if (ok != GL_TRUE) {
-    throw GlError("program '" + std::string(label) + "' failed to link:\n" + program_log(gl, id));
-  }
-  check(gl, "Program::link_capture");
-  return program;
+  return link_stages(gl, {&vs}, label, [&](GLuint id) {
+    gl.glTransformFeedbackVaryings(id, static_cast<GLsizei>(varyings.size()), varyings.data(), GL_INTERLEAVED_ATTRIBS);
+  });
 }
 
 GLint Program::uniform(const char* name) const { return api()->glGetUniformLocation(id(), name); }

@@ -5,6 +5,7 @@
 
 #include "glcontext/gl_api.h"
 
+#include <initializer_list>
 #include <span>
 #include <string_view>
 #include <utility>
@@ -95,6 +96,9 @@ class Program : public detail::GlObject<&detail::delete_program> {
 
  private:
   using GlObject::GlObject;
+  template <class BeforeLink>
+  static Program link_stages(const GlApi& gl, std::initializer_list<const Shader*> stages, std::string_view label,
+                             BeforeLink&& before_link);
 };
 
 class Texture : public detail::GlObject<&detail::delete_texture> {

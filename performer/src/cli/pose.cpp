@@ -17,6 +17,7 @@
 #include "performer/viseme_library.h"
 #include "performer/viseme_set.h"
 #include "performer/world_transforms.h"
+#include "cli_character.h"
 #include "track_sampling.h"
 
 namespace performer::cli {
@@ -36,18 +37,10 @@ void run_pose(const PoseCommand& command, std::FILE* log) {
     throw std::invalid_argument("--format must be ply or obj, not \"" + command.format + "\"");
   const Bvh bvh = read_bvh(command.bvh);
   const Skeleton& skeleton = bvh.skeleton;
-  const int frames = bvh.motion.frames;
-  if (command.first_frame < 0 || command.last_frame >= frames || command.first_frame > command.last_frame)
-    throw std::invalid_argument("frames " + std::to_string(command.first_frame) + ".." +
-                                std::to_string(command.last_frame) + " outside " + command.bvh.string() + "'s " +
-                                (frames > 0 ? "0.." + std::to_string(frames - 1) : std::string("(no frames)")));
-
-  const VisemeSet set = load_viseme_set(default_viseme_dir() / "visemes.tsv");
-  const FaceModel face = build_procedural_head(set);
-  CharacterParams params;
-  params.threads = command.threads;
-  params.body.threads = command.threads;
-  const Character character = build_character(skeleton, face, params);
+  check_frame_range(bvh, command.bvh, command.first_frame, command.last_frame);
+  const CliCharacter built = build_cli_character(skeleton, command.threads);
+  const FaceModel& face = built.face;
+  const Character& character = built.character;
   std::fprintf(log, "pose: character of %zu vertices (%zu head), %zu triangles, %zu face targets\n",
                character.vertex_count(), character.head_count, character.mesh.indices.size() / 3,
                character.targets.size());

@@ -26,6 +26,7 @@
 #include "performer/viseme_library.h"
 #include "performer/viseme_set.h"
 #include "performer/world_transforms.h"
+#include "cli_character.h"
 #include "track_sampling.h"
 
 namespace performer::cli {
@@ -114,12 +115,8 @@ void run_render(const RenderCommand& c, std::FILE* log) {
   if (c.fps < 1 || c.fps > 240) throw std::invalid_argument("--fps must be 1 to 240");
   const Bvh bvh = read_bvh(c.bvh);
   const Skeleton& skeleton = bvh.skeleton;
-  const int frames = bvh.motion.frames;
-  const int last = c.last_frame < 0 ? frames - 1 : c.last_frame;
-  if (frames == 0 || c.first_frame < 0 || last >= frames || c.first_frame > last)
-    throw std::invalid_argument("frames " + std::to_string(c.first_frame) + ".." + std::to_string(last) + " outside " +
-                                c.bvh.string() + "'s " +
-                                (frames > 0 ? "0.." + std::to_string(frames - 1) : std::string("(no frames)")));
+  const int last = c.last_frame < 0 ? bvh.motion.frames - 1 : c.last_frame;
+  check_frame_range(bvh, c.bvh, c.first_frame, last);
   if (effects.environment && !std::filesystem::is_directory(c.cubemap_dir))
     throw std::invalid_argument("the env effect needs a cube map folder (--cubemap), \"" + c.cubemap_dir.string() +
                                 "\" is not one");
@@ -129,12 +126,9 @@ void run_render(const RenderCommand& c, std::FILE* log) {
   const double duration = (last - c.first_frame) * bvh.motion.frame_time;
   const int out_frames = std::max(1, static_cast<int>(std::floor(duration * c.fps + 1e-9)) + 1);
 
-  const VisemeSet set = load_viseme_set(default_viseme_dir() / "visemes.tsv");
-  const FaceModel face = build_procedural_head(set);
-  CharacterParams params;
-  params.threads = c.threads;
-  params.body.threads = c.threads;
-  const Character character = build_character(skeleton, face, params);
+  const CliCharacter built = build_cli_character(skeleton, c.threads);
+  const FaceModel& face = built.face;
+  const Character& character = built.character;
 
   const auto context = glc::Context::create(c.gl_platform.empty() ? glc::platform_from_env()
                                                                     : glc::parse_platform(c.gl_platform));
