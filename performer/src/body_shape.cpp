@@ -177,12 +177,16 @@ BodyShape body_shape(const Skeleton& skeleton, std::span<const glm::vec3> rest_p
   return shape;
 }
 
-float capsule_field(const BoneCapsule& capsule, const glm::vec3& p) {
+BonePoint nearest_on_bone(const BoneCapsule& capsule, const glm::vec3& p) {
   const glm::vec3 ab = capsule.b - capsule.a;
   const float length2 = glm::dot(ab, ab);
   const float t = length2 > 0.0f ? std::clamp(glm::dot(p - capsule.a, ab) / length2, 0.0f, 1.0f) : 0.0f;
-  const float r = capsule.radius_a + (capsule.radius_b - capsule.radius_a) * t;
-  return glm::distance(p, capsule.a + t * ab) - r;
+  return {t, glm::distance(p, capsule.a + t * ab)};
+}
+
+float capsule_field(const BoneCapsule& capsule, const glm::vec3& p) {
+  const BonePoint nearest = nearest_on_bone(capsule, p);
+  return nearest.distance - (capsule.radius_a + (capsule.radius_b - capsule.radius_a) * nearest.t);
 }
 
 float body_field(const BodyShape& shape, const glm::vec3& p) {

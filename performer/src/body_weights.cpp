@@ -9,8 +9,6 @@
 #include <utility>
 #include <vector>
 
-#include <glm/geometric.hpp>
-
 #include "performer/parallel.h"
 
 namespace performer {
@@ -18,14 +16,6 @@ namespace performer {
 namespace {
 
 constexpr std::size_t kVerticesPerChunk = 1024;
-
-// Distance from p to the segment a-b.
-float segment_distance(const BoneCapsule& c, const glm::vec3& p) {
-  const glm::vec3 ab = c.b - c.a;
-  const float length2 = glm::dot(ab, ab);
-  const float t = length2 > 0.0f ? std::clamp(glm::dot(p - c.a, ab) / length2, 0.0f, 1.0f) : 0.0f;
-  return glm::distance(p, c.a + t * ab);
-}
 
 // Each capsule's neighbours along the skeleton: the bones ending at its first joint (its parent
 // bone; one, or none at the root) and those starting at its second joint (its child bones).
@@ -84,9 +74,9 @@ void seed_range(const BodyShape& shape, const std::vector<std::vector<std::size_
       if (f < lowest) lowest = f, own = c;
     }
     float* row = dense.data() + v * columns;
-    const float nearest = std::max(segment_distance(shape.capsules[own], x), p.min_distance);
+    const float nearest = std::max(nearest_on_bone(shape.capsules[own], x).distance, p.min_distance);
     auto consider = [&](std::size_t c) {
-      const float d = std::max(segment_distance(shape.capsules[c], x), p.min_distance);
+      const float d = std::max(nearest_on_bone(shape.capsules[c], x).distance, p.min_distance);
       // (d_own / d)^n: k / d^n scaled by the owner's, in (0, 1] for the nearer bones.
       const float w = std::pow(nearest / d, p.falloff);
       float& slot = row[static_cast<std::size_t>(column[static_cast<std::size_t>(shape.capsules[c].parent)])];

@@ -75,6 +75,13 @@ BodyShape body_shape(const Skeleton& skeleton, std::span<const glm::vec3> rest_p
 // Largest extent of the joints' bounding box: the length every shape parameter is a fraction of.
 float skeleton_size(std::span<const glm::vec3> rest_positions);
 
+// The point of the bone's segment a-b nearest to p: its parameter t (0 at a, 1 at b) and distance.
+struct BonePoint {
+  float t = 0.0f;
+  float distance = 0.0f;
+};
+BonePoint nearest_on_bone(const BoneCapsule& capsule, const glm::vec3& p);
+
 // Signed distance-like field of one capsule: negative inside, 0 on the surface, about the distance
 // outside (exact for equal radii, and close while the taper is gentle).
 float capsule_field(const BoneCapsule& capsule, const glm::vec3& p);

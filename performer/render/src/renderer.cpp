@@ -133,6 +133,13 @@ Renderer::Renderer(glc::Context& context, const Character& character, const Rend
     if (hair[indices[t]].w > 0.0f || hair[indices[t + 1]].w > 0.0f || hair[indices[t + 2]].w > 0.0f)
       scalp.insert(scalp.end(), {indices[t], indices[t + 1], indices[t + 2]});
   scalp_index_count_ = scalp.size();
+  // Strands as long as 9 % of the head's height.
+  float head_lo = 1e30f, head_hi = -1e30f;
+  for (std::size_t v = character.head_first; v < character.vertex_count(); ++v) {
+    head_lo = std::min(head_lo, character.mesh.positions[v].y);
+    head_hi = std::max(head_hi, character.mesh.positions[v].y);
+  }
+  hair_length_ = character.head_count > 0 ? 0.09f * (head_hi - head_lo) : 0.0f;
   scalp_indices_ = glc::Buffer::create(gl, GL_ELEMENT_ARRAY_BUFFER, std::max<std::size_t>(scalp.size(), 1) * sizeof(std::uint32_t),
                                        scalp.empty() ? nullptr : scalp.data(), GL_STATIC_DRAW);
   character_vao_ = glc::VertexArray::create(gl);
@@ -262,19 +269,13 @@ void Renderer::render(const GpuDeformer& deformed, const Camera& camera, float f
   if (fx.hair && scalp_index_count_ > 0) {
     // Shells over the scalp, inside outwards, alpha-blended; depth tested, not written, so that the
     // shells do not hide each other.
-    glm::vec3 lo(1e30f), hi(-1e30f);
-    for (std::size_t v = character_->head_first; v < character_->vertex_count(); ++v) {
-      lo = glm::min(lo, character_->mesh.positions[v]);
-      hi = glm::max(hi, character_->mesh.positions[v]);
-    }
-    const float hair_length = 0.09f * (hi.y - lo.y);
     gl.glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, scalp_indices_.id());
     gl.glEnable(GL_BLEND);
     gl.glDepthMask(GL_FALSE);
     gl.glDisable(GL_CULL_FACE);
     for (int s = 1; s <= kHairShells; ++s) {
       const float layer = static_cast<float>(s) / kHairShells;
-      character_uniforms(hair_program_, layer * hair_length);
+      character_uniforms(hair_program_, layer * hair_length_);
       gl.glUniform3fv(hair_program_.uniform("u_light"), 1, glm::value_ptr(light));
       gl.glUniform1f(hair_program_.uniform("u_layer"), layer);
       gl.glUniform1f(hair_program_.uniform("u_strands"), kHairStrandsPerMetre);
@@ -287,8 +288,8 @@ void Renderer::render(const GpuDeformer& deformed, const Camera& camera, float f
   gl.glDisable(GL_CULL_FACE);
 
   if (fx.snow && snow != nullptr && !snow->flakes().empty()) {
-    std::vector<glm::vec4> flakes;
-    flakes.reserve(snow->flakes().size());
+    std::vector<glm::vec4>& flakes = snow_scratch_;
+    flakes.clear();
     for (const Snow::Flake& f : snow->flakes()) flakes.emplace_back(f.position, f.size);
     gl.glBindBuffer(GL_ARRAY_BUFFER, snow_instances_.id());
     gl.glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(flakes.size() * sizeof(glm::vec4)), flakes.data(),

@@ -13,6 +13,7 @@
 #include "glcontext/context.h"
 #include "imageio/image.h"
 #include "imageio/write.h"
+#include "performer/body_mesh.h"
 #include "performer/bvh.h"
 #include "performer/character.h"
 #include "performer/face_deform.h"
@@ -149,12 +150,10 @@ void run_render(const RenderCommand& c, std::FILE* log) {
   const float height = hi.y - lo.y;
   float floor_y = 1e30f;
   {
-    std::vector<glm::mat4> l(skeleton.joints.size()), w(skeleton.joints.size());
-    rest_local_transforms(skeleton, l);
-    world_transforms(skeleton, l, w);
     float rest_lowest = 1e30f;
-    for (const glm::mat4& m : w) rest_lowest = std::min(rest_lowest, m[3][1]);
+    for (const glm::vec3& j : rest_joint_positions(skeleton)) rest_lowest = std::min(rest_lowest, j.y);
     const float sole = rest_lowest - lo.y;
+    std::vector<glm::mat4> l(skeleton.joints.size()), w(skeleton.joints.size());
     for (int f = c.first_frame; f <= last; f += std::max(1, (last - c.first_frame) / 200)) {
       local_transforms(skeleton, frame_values(skeleton, bvh.motion, f), l);
       world_transforms(skeleton, l, w);
