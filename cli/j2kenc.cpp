@@ -181,7 +181,7 @@ void print_timing(const std::string& mode, const codec::EncodeReport& r, double 
   for (const auto& [name, ms] : stages) std::fprintf(stderr, "  %-22s %10.2f\n", name, ms);
   std::fprintf(stderr, "  %-22s %10.2f\n  %-22s %10.2f\n", "sum of stages", sum, "total (measured)", measured_ms);
   if (r.recoded_blocks > 0)
-    std::fprintf(stderr, "  (pass skipping: %zu blocks stopped too soon were coded again in full)\n", r.recoded_blocks);
+    std::fprintf(stderr, "  (pass skipping: %zu blocks stopped or skipped too soon were coded again)\n", r.recoded_blocks);
 }
 
 }  // namespace

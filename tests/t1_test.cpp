@@ -921,3 +921,41 @@ TEST(T1InPlace, SameCodewordsAsFromCopiedIndices) {
   EXPECT_THROW(codec::t1::encode_block(codec::t1::IntegerBlock{row.data(), 2, 4, 1}, Orientation::LL, 8, {}),
                std::invalid_argument);  // rows narrower than the block
 }
+
+// The stop rule's block skip: a block whose whole energy, bought with one byte, is worth less than
+// the stop slope gets no pass (and says it stopped), with the bit-planes and energy full coding
+// reports; a slope just below that bound codes it. Both from a float plane and from indices.
+TEST(T1StopRule, BlocksWorthNoPassAreNotCoded) {
+  std::mt19937 rng(1207);
+  std::normal_distribution<float> coefficient(0.0f, 3.0f);
+  const int w = 32, h = 20, stride = 40;
+  std::vector<float> plane(static_cast<std::size_t>(stride * h));
+  for (float& c : plane) c = coefficient(rng);
+  std::vector<std::int32_t> indices(plane.size());
+  for (std::size_t i = 0; i < plane.size(); ++i) indices[i] = static_cast<std::int32_t>(plane[i] * 4.0f);
+  const float inverse_step = 4.0f;
+  const double weight = 0.25;
+  for (const bool from_floats : {true, false}) {
+    auto encode = [&](codec::t1::StopRule stop) {
+      return from_floats ? codec::t1::encode_block(codec::t1::FloatBlock{plane.data(), stride, w, h, inverse_step},
+                                                   Orientation::HH, 20, {}, stop)
+                         : codec::t1::encode_block(codec::t1::IntegerBlock{indices.data(), stride, w, h}, Orientation::HH,
+                                                   20, {}, stop);
+    };
+    const EncodedBlock full = encode({});
+    ASSERT_GT(full.bit_planes, 2);
+    ASSERT_FALSE(full.passes.empty());
+    EXPECT_FALSE(full.stopped_early);
+    const double bound = weight * full.energy;  // per byte
+    const EncodedBlock skipped = encode(codec::t1::StopRule{bound * 1.001, weight});
+    EXPECT_TRUE(skipped.passes.empty()) << "from floats: " << from_floats;
+    EXPECT_TRUE(skipped.data.empty());
+    EXPECT_TRUE(skipped.stopped_early);
+    EXPECT_EQ(skipped.bit_planes, full.bit_planes);
+    EXPECT_EQ(skipped.missing_msbs, full.missing_msbs);
+    EXPECT_EQ(skipped.energy, full.energy);
+    const EncodedBlock coded = encode(codec::t1::StopRule{bound * 0.999, weight});
+    EXPECT_FALSE(coded.passes.empty()) << "from floats: " << from_floats;
+    EXPECT_EQ(coded.energy, full.energy);
+  }
+}

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -129,19 +130,50 @@ LayerPasses select_for_bytes(const std::vector<CodedTile>& tiles, const rate::Ra
   return per_tile(tiles, best);
 }
 
+// The lowest slope the last layer takes from any block: the hull slope of each block's last chosen
+// point (hulls in tile order, as control_rate builds them). +infinity when nothing is chosen.
+double lowest_slope_taken(const std::vector<CodedTile>& tiles, const LayerPasses& passes,
+                          const std::vector<std::vector<rate::HullPoint>>& hulls) {
+  double lowest = std::numeric_limits<double>::infinity();
+  std::size_t g = 0;
+  for (std::size_t t = 0; t < tiles.size(); ++t)
+    for (std::size_t b = 0; b < tiles[t].blocks.size(); ++b, ++g) {
+      const int chosen = passes[t][b].back();
+      for (const rate::HullPoint& point : hulls[g])
+        if (point.passes == chosen) lowest = std::min(lowest, point.slope);
+    }
+  return lowest;
+}
+
 // Pass skipping's check: a block that stopped early, and that the last layer takes any pass of its
 // last coded bit-plane from, may have been stopped too soon. The rest stopped at least a whole
-// bit-plane past the cut. Returns (tile, block) pairs.
-std::vector<std::pair<std::size_t, std::size_t>> starved_blocks(const std::vector<CodedTile>& tiles,
-                                                                const LayerPasses& passes) {
-  std::vector<std::pair<std::size_t, std::size_t>> starved;
+// bit-plane past the cut. A block not coded at all (its weighted energy below the stop rule's
+// slope times a byte) may have been skipped too soon when even its energy, bought with one byte,
+// reaches the lowest slope the allocation takes; it is coded again under a stop rule below that
+// slope (the check then applies to it as to any block that stopped), the others in full.
+struct StarvedBlock {
+  std::size_t tile = 0, block = 0;
+  t1::StopRule stop;  // min_slope 0: every pass
+};
+
+std::vector<StarvedBlock> starved_blocks(const std::vector<CodedTile>& tiles,
+                                                                const LayerPasses& passes,
+                                                                const std::vector<std::vector<rate::HullPoint>>& hulls) {
+  const double lowest_slope = lowest_slope_taken(tiles, passes, hulls);
+  std::vector<StarvedBlock> starved;
   for (std::size_t t = 0; t < tiles.size(); ++t)
     for (std::size_t b = 0; b < tiles[t].blocks.size(); ++b) {
       const t1::EncodedBlock& eb = tiles[t].blocks[b];
-      // The last coded bit-plane's first pass: its cleanup when only the top plane was coded.
+      if (!eb.stopped_early) continue;
       const int coded = static_cast<int>(eb.passes.size());
+      if (coded == 0) {
+        if (eb.energy * tiles[t].jobs[b].weight >= lowest_slope)
+          starved.push_back({t, b, t1::StopRule{lowest_slope / kStopSafety, 1}});
+        continue;
+      }
+      // The last coded bit-plane's first pass: its cleanup when only the top plane was coded.
       const int last_plane_start = coded == 1 ? 0 : coded - 3;
-      if (eb.stopped_early && passes[t][b].back() > last_plane_start) starved.emplace_back(t, b);
+      if (passes[t][b].back() > last_plane_start) starved.push_back({t, b, {}});
     }
   return starved;
 }
@@ -173,14 +205,16 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
     passes = in.params.layers[0].kind == LayerTarget::Kind::Psnr
                  ? select_for_psnr(tiles, allocator, hulls, energy, in)
                  : select_for_bytes(tiles, allocator, hulls.size(), in, file_size);
-    const auto starved = starved_blocks(tiles, passes);
-    if (starved.empty() || round == 2) break;  // recoded blocks have every pass: twice is enough
+    const auto starved = starved_blocks(tiles, passes, hulls);
+    // A block coded again in full is never starved again; one that was skipped may stop again,
+    // and then be coded in full a round later: three rounds are enough.
+    if (starved.empty() || round == 3) break;
     report.recoded_blocks += starved.size();
     const auto recode_start = Clock::now();
     in.pool.parallel_for(starved.size(), [&](std::size_t k) {
-      CodedTile& tile = tiles[starved[k].first];
-      const std::size_t b = starved[k].second;
-      t1::EncodedBlock eb = code_block(tile, tile.jobs[b], in.params, tile.block_magnitude_bitplanes[b]);
+      CodedTile& tile = tiles[starved[k].tile];
+      const std::size_t b = starved[k].block;
+      t1::EncodedBlock eb = code_block(tile, tile.jobs[b], in.params, tile.block_magnitude_bitplanes[b], starved[k].stop);
       eb.missing_msbs = tile.blocks[b].missing_msbs;  // unchanged: the same bit-planes
       tile.blocks[b] = std::move(eb);
     });

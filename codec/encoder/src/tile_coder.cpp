@@ -326,6 +326,7 @@ std::vector<BlockJob> block_jobs(const Tile& tile, const CodingPlan& plan, bool 
             BlockJob job;
             job.component = c;
             job.block_index = cb.index;
+            job.resolution = res.r;
             job.orientation = to_t1(band.orientation);
             job.x0 = band.layout.x + (cb.rect.x0 - band.rect.x0);
             job.y0 = band.layout.y + (cb.rect.y0 - band.rect.y0);
@@ -346,39 +347,99 @@ std::vector<BlockJob> block_jobs(const Tile& tile, const CodingPlan& plan, bool 
   return jobs;
 }
 
-// Predicts the final slope threshold from a sample of blocks coded in full: the threshold at which
-// the sample spends its share (by coefficient count) of the tile's bytes, or leaves its share of
-// the tile's squared error.
-double predict_threshold(const std::vector<BlockJob>& jobs, const CodedTile& coded, const std::vector<std::size_t>& sample,
-                         const Tier1Target& target) {
-  double sample_coefficients = 0, all_coefficients = 0, sample_energy = 0;
-  for (const BlockJob& j : jobs) all_coefficients += static_cast<double>(j.width) * j.height;
-  std::vector<std::vector<rate::HullPoint>> hulls;
-  for (std::size_t i : sample) {
-    const BlockJob& j = jobs[i];
-    sample_coefficients += static_cast<double>(j.width) * j.height;
-    hulls.push_back(rate::convex_hull(coded.blocks[j.block_index].passes, j.weight));
-    sample_energy += coded.blocks[j.block_index].energy * j.weight;
+// A sample of a tile's code-blocks that stands for all of them: each sampled block with the number
+// of blocks' worth of coefficients it represents.
+struct BlockSample {
+  std::vector<std::size_t> blocks;
+  std::vector<double> scale;
+};
+
+// Stratified by resolution (their blocks differ most in value: a coarse block is worth many fine
+// ones): resolutions with few blocks are taken whole, the others one block in `stride`, each
+// standing for its resolution's coefficients over those of its sampled blocks.
+BlockSample sample_blocks(const std::vector<BlockJob>& jobs, std::size_t stride) {
+  int resolutions = 0;
+  for (const BlockJob& j : jobs) resolutions = std::max(resolutions, j.resolution + 1);
+  std::vector<double> coefficients(static_cast<std::size_t>(resolutions)), sampled(coefficients.size());
+  std::vector<std::size_t> blocks(coefficients.size()), seen(coefficients.size());
+  for (const BlockJob& j : jobs) {
+    coefficients[static_cast<std::size_t>(j.resolution)] += static_cast<double>(j.width) * j.height;
+    ++blocks[static_cast<std::size_t>(j.resolution)];
   }
-  const double share = target.value * sample_coefficients / std::max(1.0, all_coefficients);
-  // Bytes spent, and squared error left, by the sample at a threshold.
+  BlockSample out;
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    const auto r = static_cast<std::size_t>(jobs[i].resolution);
+    if (blocks[r] <= kWholeResolutionBlocks || seen[r]++ % stride == 0) {
+      out.blocks.push_back(i);
+      sampled[r] += static_cast<double>(jobs[i].width) * jobs[i].height;
+    }
+  }
+  for (std::size_t i : out.blocks) {
+    const auto r = static_cast<std::size_t>(jobs[i].resolution);
+    out.scale.push_back(coefficients[r] / sampled[r]);
+  }
+  return out;
+}
+
+// Predicts the final slope threshold from a sample of blocks coded (in full wherever the hulls are
+// looked at): the threshold at which the sample, scaled up, spends the tile's bytes, or leaves the
+// tile's squared error.
+double predict_threshold(const std::vector<BlockJob>& jobs, const CodedTile& coded, const BlockSample& sample,
+                         const Tier1Target& target) {
+  std::vector<std::vector<rate::HullPoint>> hulls;
+  double energy = 0;
+  for (std::size_t k = 0; k < sample.blocks.size(); ++k) {
+    const BlockJob& j = jobs[sample.blocks[k]];
+    hulls.push_back(rate::convex_hull(coded.blocks[j.block_index].passes, j.weight));
+    energy += sample.scale[k] * coded.blocks[j.block_index].energy * j.weight;
+  }
+  // Bytes spent, and squared error left, by the whole tile at a threshold, as the sample tells.
   auto at = [&](double threshold) {
     double bytes = 0, kept = 0;
-    for (const auto& hull : hulls) {
-      const std::size_t points = rate::points_at_or_above(hull, threshold);
-      if (points > 0) bytes += static_cast<double>(hull[points - 1].bytes), kept += hull[points - 1].distortion;
+    for (std::size_t k = 0; k < hulls.size(); ++k) {
+      const std::size_t points = rate::points_at_or_above(hulls[k], threshold);
+      if (points > 0)
+        bytes += sample.scale[k] * static_cast<double>(hulls[k][points - 1].bytes),
+            kept += sample.scale[k] * hulls[k][points - 1].distortion;
     }
-    return std::pair{bytes, sample_energy - kept};
+    return std::pair{bytes, energy - kept};
   };
   // Bisect on the logarithm: slopes span many decades. Both bytes and error are monotone in it.
   double lo = -60, hi = 60;  // log2 of the threshold
   for (int i = 0; i < 60; ++i) {
     const double mid = 0.5 * (lo + hi);
     const auto [bytes, error] = at(std::exp2(mid));
-    const bool too_much = target.kind == Tier1Target::Kind::Bytes ? bytes > share : error < share;
+    const bool too_much = target.kind == Tier1Target::Kind::Bytes ? bytes > target.value : error < target.value;
     (too_much ? lo : hi) = mid;
   }
   return std::exp2(hi);
+}
+
+// Codes the blocks of `sample` (sample_blocks with kSampleStride) and returns the slope threshold they predict. In two
+// steps: a sparser sample coded in full gives a first estimate, the rest of the sample stops far
+// below it (its hulls are then whole wherever the prediction looks), and those of its blocks that
+// stopped are coded in full after all if the prediction falls within reach of where they stopped.
+// `run(blocks, stop)` codes the listed blocks of `coded`.
+template <class Run>
+double code_sample(CodedTile& coded, const BlockSample& sample, const Tier1Target& target, Run&& run) {
+  const BlockSample presample = sample_blocks(coded.jobs, kPresampleStride);
+  std::vector<bool> in_presample(coded.jobs.size());
+  for (std::size_t i : presample.blocks) in_presample[i] = true;
+  std::vector<std::size_t> sample_rest;
+  for (std::size_t i : sample.blocks)
+    if (!in_presample[i]) sample_rest.push_back(i);
+  run(presample.blocks, t1::StopRule{});
+  const double first_estimate = predict_threshold(coded.jobs, coded, presample, target);
+  run(sample_rest, t1::StopRule{first_estimate / kPresampleMargin, 1});
+  double predicted = predict_threshold(coded.jobs, coded, sample, target);
+  if (predicted < first_estimate / (kPresampleMargin / 2)) {
+    std::vector<std::size_t> stopped;
+    for (std::size_t i : sample_rest)
+      if (coded.blocks[coded.jobs[i].block_index].stopped_early) stopped.push_back(i);
+    run(stopped, t1::StopRule{});
+    predicted = predict_threshold(coded.jobs, coded, sample, target);
+  }
+  return predicted;
 }
 
 }  // namespace
@@ -433,13 +494,16 @@ CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const Cod
   if (target.kind == Tier1Target::Kind::None || target.value <= 0 || coded.jobs.size() < 64) {
     run(all, {});
   } else {
-    // Code only what the budget keeps: a sample of one block in kSampleStride in full, the threshold
-    // it predicts, then every other block until its bit-planes fall well below that threshold.
-    // The encoder recodes in full any block the final allocation cuts near where it stopped.
-    std::vector<std::size_t> sample, rest;
-    for (std::size_t i : all) (i % kSampleStride == 0 ? sample : rest).push_back(i);
-    run(sample, {});
-    coded.stop_threshold = predict_threshold(coded.jobs, coded, sample, target) / kStopSafety;
+    // Code only what the budget keeps: a sample of the blocks, the threshold it predicts, then every
+    // other block until its bit-planes fall well below that threshold. The encoder recodes in full
+    // any block the final allocation cuts near where it stopped.
+    const BlockSample sample = sample_blocks(coded.jobs, kSampleStride);
+    coded.stop_threshold = code_sample(coded, sample, target, run) / kStopSafety;
+    std::vector<bool> in_sample(all.size());
+    for (std::size_t i : sample.blocks) in_sample[i] = true;
+    std::vector<std::size_t> rest;
+    for (std::size_t i : all)
+      if (!in_sample[i]) rest.push_back(i);
     run(rest, t1::StopRule{coded.stop_threshold, 1});
   }
   find_guard_bits(tile, plan, coded);

@@ -15,6 +15,10 @@ namespace codec::t1 {
 namespace {
 
 constexpr int kQuietPlanesToStop = 2;
+// The fewest bytes a pass that buys distortion takes, for the stop rule's bound on a block's best
+// slope. (A first pass can in principle need no byte, when the decoder's 1-fill happens to spell its
+// symbols; rate control's check catches a block skipped on that account.)
+constexpr double kLeastPassBytes = 1;
 
 void validate_dimensions(int width, int height, int magnitude_bitplanes) {
   if (width < 1 || height < 1)
@@ -38,6 +42,11 @@ void validate(std::span<const std::int32_t> coefficients, int width, int height,
   if (coefficients.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
     throw std::invalid_argument("code-block of " + std::to_string(width) + "x" + std::to_string(height) + " given " +
                                 std::to_string(coefficients.size()) + " coefficients");
+}
+
+void validate(const StopRule& stop, Distortion distortion) {
+  if (distortion == Distortion::Skipped && stop.min_slope > 0)
+    throw std::invalid_argument("a stop rule needs the passes' distortion measured");
 }
 
 // A pass whose codeword length is only known once its segment has been terminated.
@@ -124,11 +133,17 @@ double code_pass(int pass, int plane, bool raw, const BlockView& v, const ZeroCo
   return gain;
 }
 
+// Whether a block of this energy (all the distortion it could ever buy), bought with a single
+// byte, would still be worth less than the stop rule's slope: then no hull point of it can reach
+// the slope, and no pass is worth coding.
+bool worth_no_pass(double energy, const StopRule& stop) {
+  return stop.min_slope > 0 && stop.weight * energy < stop.min_slope * kLeastPassBytes;
+}
+
 // The coder proper, on a loaded block.
 EncodedBlock encode_state(CoefficientState& state, int width, int height, Orientation o, int magnitude_bitplanes,
                           BlockStyle style, StopRule stop, Distortion distortion = Distortion::Measured) {
-  if (distortion == Distortion::Skipped && stop.min_slope > 0)
-    throw std::invalid_argument("a stop rule needs the passes' distortion measured");
+  validate(stop, distortion);
   const bool measure = distortion == Distortion::Measured;
   const int planes = state.bit_planes();
   if (planes > magnitude_bitplanes)
@@ -140,6 +155,10 @@ EncodedBlock encode_state(CoefficientState& state, int width, int height, Orient
   out.missing_msbs = magnitude_bitplanes - planes;
   out.bit_planes = planes;
   const int count = pass_count(planes);
+  if (count > 0 && worth_no_pass(out.energy, stop)) {
+    out.stopped_early = true;
+    return out;
+  }
   out.passes.resize(static_cast<std::size_t>(count));
   if (count == 0) return out;
   out.data.reserve(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
@@ -207,7 +226,21 @@ EncodedBlock encode_block(const IntegerBlock& block, Orientation o, int magnitud
 EncodedBlock encode_block(const FloatBlock& block, Orientation o, int magnitude_bitplanes, BlockStyle style,
                           StopRule stop, Distortion distortion) {
   validate_shape(block.origin, block.stride, block.width, block.height, magnitude_bitplanes);
-  CoefficientState state(block);
+  validate(stop, distortion);
+  const FloatBlockPlanes planes = float_block_planes(block);
+  if (stop.min_slope > 0 && planes.bit_planes > 0 && planes.bit_planes <= magnitude_bitplanes) {
+    // At low rates most blocks are worth nothing: tell them by their energy before loading them.
+    const double energy = float_block_energy(block, planes);
+    if (worth_no_pass(energy, stop)) {
+      EncodedBlock out;
+      out.energy = energy;
+      out.bit_planes = planes.bit_planes;
+      out.missing_msbs = magnitude_bitplanes - planes.bit_planes;
+      out.stopped_early = true;
+      return out;
+    }
+  }
+  CoefficientState state(block, planes);
   return encode_state(state, block.width, block.height, o, magnitude_bitplanes, style, stop, distortion);
 }
 

@@ -99,6 +99,30 @@ double QuantizeRow(const float* HWY_RESTRICT row, std::size_t n, float inverse_s
   return result;
 }
 
+double FixedPointEnergyRow(const float* HWY_RESTRICT row, std::size_t n, float inverse_step, int fine_bits) {
+  const hn::ScalableTag<float> df;
+  const hn::RebindToSigned<decltype(df)> di;
+  const DoubleTag<decltype(di)> dd;
+  const std::size_t N = hn::Lanes(df);
+  const float scale = static_cast<float>(1u << fine_bits);
+  const auto inverse = hn::Set(df, inverse_step);
+  const auto largest = hn::Set(df, kLargestMagnitude);
+  const auto to_fixed = hn::Set(df, scale);
+  auto energy = hn::Zero(dd);
+  std::size_t i = 0;
+  for (; i + N <= n; i += N) {  // QuantizeRow's arithmetic, without the stores
+    auto m = hn::Mul(hn::Abs(hn::LoadU(df, row + i)), inverse);
+    m = hn::IfThenElse(hn::Lt(m, largest), m, largest);
+    energy = AddSquares(di, hn::ConvertTo(di, hn::Mul(m, to_fixed)), energy);
+  }
+  double result = hn::GetLane(hn::SumOfLanes(dd, energy));
+  for (; i < n; ++i) {
+    const auto f = static_cast<std::uint32_t>(static_cast<std::int32_t>(scaled_magnitude(row[i], inverse_step) * scale));
+    result += static_cast<double>(f) * static_cast<double>(f);
+  }
+  return result;
+}
+
 std::uint32_t LoadIndexRow(const std::int32_t* HWY_RESTRICT row, std::size_t n, std::uint32_t* HWY_RESTRICT magnitude,
                            std::uint16_t* HWY_RESTRICT flags, double& energy_sum) {
   const hn::ScalableTag<std::int32_t> di;
@@ -147,6 +171,7 @@ namespace codec::t1::simd {
 HWY_EXPORT(PeakScaledMagnitude);
 HWY_EXPORT(QuantizeRow);
 HWY_EXPORT(LoadIndexRow);
+HWY_EXPORT(FixedPointEnergyRow);
 
 float peak_scaled_magnitude(const float* row, std::size_t n, float inverse_step) {
   return HWY_DYNAMIC_DISPATCH(PeakScaledMagnitude)(row, n, inverse_step);
@@ -155,6 +180,10 @@ float peak_scaled_magnitude(const float* row, std::size_t n, float inverse_step)
 double quantize_row(const float* row, std::size_t n, float inverse_step, int fine_bits, std::uint32_t* fine,
                     std::uint32_t* magnitude, std::uint16_t* flags) {
   return HWY_DYNAMIC_DISPATCH(QuantizeRow)(row, n, inverse_step, fine_bits, fine, magnitude, flags);
+}
+
+double fixed_point_energy_row(const float* row, std::size_t n, float inverse_step, int fine_bits) {
+  return HWY_DYNAMIC_DISPATCH(FixedPointEnergyRow)(row, n, inverse_step, fine_bits);
 }
 
 std::uint32_t load_index_row(const std::int32_t* row, std::size_t n, std::uint32_t* magnitude, std::uint16_t* flags,

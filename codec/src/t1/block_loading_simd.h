@@ -19,6 +19,9 @@ float peak_scaled_magnitude(const float* row, std::size_t n, float inverse_step)
 double quantize_row(const float* row, std::size_t n, float inverse_step, int fine_bits, std::uint32_t* fine,
                     std::uint32_t* magnitude, std::uint16_t* flags);
 
+// quantize_row's returned sum alone (the same values), with nothing stored.
+double fixed_point_energy_row(const float* row, std::size_t n, float inverse_step, int fine_bits);
+
 // Loads a row of integer indices (or reversible coefficients): magnitude = |c| (in unsigned
 // arithmetic, so INT32_MIN gives 2^31), flags = kNeg where c < 0. Adds the sum of squared
 // magnitudes to `energy` and returns the OR of the magnitudes.

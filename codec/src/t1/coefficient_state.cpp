@@ -86,17 +86,36 @@ CoefficientState::CoefficientState(const IntegerBlock& block) : CoefficientState
   bit_planes_ = static_cast<int>(std::bit_width(any_bits));
 }
 
+FloatBlockPlanes float_block_planes(const FloatBlock& block) {
+  const auto w = static_cast<std::size_t>(block.width);
+  float peak = 0;
+  for (int y = 0; y < block.height; ++y)
+    peak = std::max(peak, simd::peak_scaled_magnitude(block.origin + y * block.stride, w, block.inverse_step));
+  FloatBlockPlanes planes;
+  planes.bit_planes = static_cast<int>(std::bit_width(static_cast<std::uint32_t>(static_cast<std::int32_t>(peak))));
+  planes.fine_bits = std::clamp(31 - planes.bit_planes, 0, kFractionBits);
+  return planes;
+}
+
+double float_block_energy(const FloatBlock& block, const FloatBlockPlanes& planes) {
+  const auto w = static_cast<std::size_t>(block.width);
+  double sum = 0;
+  for (int y = 0; y < block.height; ++y)
+    sum += simd::fixed_point_energy_row(block.origin + y * block.stride, w, block.inverse_step, planes.fine_bits);
+  return std::ldexp(sum, -2 * planes.fine_bits);
+}
+
+CoefficientState::CoefficientState(const FloatBlock& block) : CoefficientState(block, float_block_planes(block)) {}
+
 // The same as load() with the fractions of quantize() (dead_zone.h), in two vectorised sweeps:
 // quantisation is monotonic in |c|, so the largest magnitude gives the bit-planes and with them the
-// fixed point, and then fine = floor(|c| / step * 2^F) is the index with the F leading bits of its
-// fraction appended, exactly as load() assembles it.
-CoefficientState::CoefficientState(const FloatBlock& block) : CoefficientState(block.width, block.height) {
+// fixed point (float_block_planes), and then fine = floor(|c| / step * 2^F) is the index with the F
+// leading bits of its fraction appended, exactly as load() assembles it.
+CoefficientState::CoefficientState(const FloatBlock& block, const FloatBlockPlanes& planes)
+    : CoefficientState(block.width, block.height) {
   const auto w = static_cast<std::size_t>(width_);
-  float peak = 0;
-  for (int y = 0; y < height_; ++y)
-    peak = std::max(peak, simd::peak_scaled_magnitude(block.origin + y * block.stride, w, block.inverse_step));
-  bit_planes_ = static_cast<int>(std::bit_width(static_cast<std::uint32_t>(static_cast<std::int32_t>(peak))));
-  fine_bits_ = std::clamp(31 - bit_planes_, 0, kFractionBits);
+  bit_planes_ = planes.bit_planes;
+  fine_bits_ = planes.fine_bits;
   fine_.assign(magnitude_.size(), 0);
   double sum = 0;
   for (int y = 0; y < height_; ++y) {

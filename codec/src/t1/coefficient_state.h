@@ -8,6 +8,16 @@
 
 namespace codec::t1 {
 
+// What the largest coefficient of a float block decides: the bit-planes its indices use, and the
+// fraction bits its fixed-point magnitudes keep (as many of 8 as stay below 2^31).
+struct FloatBlockPlanes {
+  int bit_planes = 0;
+  int fine_bits = 0;
+};
+FloatBlockPlanes float_block_planes(const FloatBlock& block);
+// The block's energy as CoefficientState(block).energy() gives it, without loading the block.
+double float_block_energy(const FloatBlock& block, const FloatBlockPlanes& planes);
+
 // Owns a code-block's working arrays (see BlockView): magnitudes and signs, the stripe column
 // words (all clear to begin with) and, when the coefficients' fractions are given, the fixed-point
 // magnitudes distortion is measured on.
@@ -20,6 +30,7 @@ class CoefficientState {
   // The same from a block in its plane: indices as they are, or floats quantised on the way in.
   explicit CoefficientState(const IntegerBlock& block);
   explicit CoefficientState(const FloatBlock& block);
+  CoefficientState(const FloatBlock& block, const FloatBlockPlanes& planes);
 
   // Magnitude bit-planes in use: the position of the highest set bit of any magnitude, plus one.
   int bit_planes() const { return bit_planes_; }

@@ -47,7 +47,8 @@ struct EncodedBlock {
 // cleanup pass that ends a bit-plane, once that bit-plane and the one before it each bought less
 // than `min_slope` weighted distortion per byte (weight * distortion decrease / bytes, the bytes
 // estimated from the coder's state). The codeword is then terminated there, as if that pass were
-// the last. 0: every pass.
+// the last. A block whose weighted energy (all the distortion it could ever buy) is below
+// `min_slope` times one byte is not coded at all: no pass, stopped_early set. 0: every pass.
 struct StopRule {
   double min_slope = 0;
   double weight = 1;
