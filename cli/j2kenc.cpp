@@ -291,7 +291,7 @@ int main(int argc, char** argv) {
     const auto t0 = Clock::now();
     codec::SourceImage image = [&] {
       // PNM goes straight into the encoder's planes; everything else through the generic reader.
-      if (auto planar = imageio::read_planar_if_native(input)) return codec::to_source_image(std::move(*planar), input);
+      if (auto packed = imageio::read_packed_if_native(input)) return codec::to_source_image(std::move(*packed), input);
       const cli::QuietStderr quiet_libraries;
       return codec::to_source_image(imageio::read_image(input), input);
     }();

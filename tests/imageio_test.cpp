@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -786,6 +787,52 @@ TEST_F(ImageIoTest, SuccessfulWriteReplacesAndLeavesNoTemporary) {
   imageio::write_image(file, image);
   expect_same_pixels(image, imageio::read_image(file));
   EXPECT_EQ(files_in_dir(), std::vector<std::string>{"replace.png"});
+}
+
+// The packed reader gives read_pnm's samples for every kind of PNM, unpacked from any column;
+// a raw raster with maxval 255 or 65535 is the file's own bytes, not a copy.
+TEST_F(ImageIoTest, PackedPnmHasTheSamplesOfEveryKind) {
+  struct Case {
+    std::string name, bytes;
+    bool raster_in_file;
+  };
+  const std::string raw8 = std::string("P6\n3 2\n255\n") + std::string("\x01\x02\x03\x04\x05\x06\x07\x08\x09\x0a\x0b\x0c\xfd\xfe\xff\x00\x80\x7f", 18);
+  const std::string raw16 = std::string("P5\n2 2\n65535\n") + std::string("\x01\x02\xff\xfe\x00\x00\x80\x01", 8);
+  const Case cases[] = {
+      {"raw8.ppm", raw8, true},
+      {"raw16.pgm", raw16, true},
+      {"plain.ppm", "P3\n2 2\n1000\n1 2 3 999 5 6\n7 8 9 10 11 1000\n", false},
+      {"odd_maxval.pgm", std::string("P5 3 1 100 ") + std::string("\x00\x32\x64", 3), false},
+      {"bitmap.pbm", std::string("P4\n9 2\n") + std::string("\xa5\x80\x0f\x00", 4), false},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    write_bytes(path(c.name), c.bytes);
+    const imageio::Image expected = imageio::read_pnm(path(c.name));
+    const std::vector<std::uint8_t> bytes = read_bytes(path(c.name));
+    const imageio::PackedImage parsed = imageio::parse_pnm_packed(bytes, c.name);
+    const bool points_into_bytes = parsed.raster >= bytes.data() && parsed.raster < bytes.data() + bytes.size();
+    EXPECT_EQ(points_into_bytes, c.raster_in_file);
+    const std::optional<imageio::PackedImage> read = imageio::read_packed_if_native(path(c.name));
+    ASSERT_TRUE(read.has_value());
+    for (const imageio::PackedImage* packed : {&parsed, &*read}) {
+      ASSERT_EQ(packed->width, expected.width);
+      ASSERT_EQ(packed->height, expected.height);
+      ASSERT_EQ(packed->channels, expected.channels);
+      EXPECT_EQ(packed->bits_per_sample, expected.bits_per_sample);
+      for (int y = 0; y < expected.height; ++y)
+        for (int ch = 0; ch < expected.channels; ++ch)
+          for (int x0 = 0; x0 < expected.width; ++x0) {
+            std::vector<std::int32_t> row(std::size_t(expected.width - x0), -1);
+            packed->unpack_row(ch, y, x0, expected.width - x0, row.data());
+            for (int x = x0; x < expected.width; ++x)
+              ASSERT_EQ(float(row[std::size_t(x - x0)]), expected.at(x, y, ch)) << x << "," << y << " channel " << ch;
+          }
+    }
+  }
+  EXPECT_FALSE(imageio::read_packed_if_native(path("image.png")).has_value());  // not ours: no attempt
+  write_bytes(path("bad.ppm"), "P6\n3 2\n255\n\x01");
+  EXPECT_THROW(imageio::read_packed_if_native(path("bad.ppm")), imageio::IoError);  // truncated
 }
 
 TEST(IoError, MessageIsOneLine) {

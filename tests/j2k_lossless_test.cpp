@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <sstream>
 
@@ -265,3 +266,41 @@ TEST(J2kLossless, InPlaceEncodeWritesTheSameFile) {
     EXPECT_EQ(copied, in_place) << in.image.width << "x" << in.image.height << "x" << in.image.channels;
   }
 }
+
+namespace {
+
+// A PNM read packed (its samples unpacked row by row as the stages need them) encodes to the same
+// codestream as the same image given as integer planes: lossless and lossy, whole and in offset
+// tiles, with byte and PSNR targets (whose rebuilds compare against the packed source), given up
+// to the encoder or not, 8 and 16 bits, RGB and grey.
+TEST(PackedSource, EncodesAsThePlanarImageDoes) {
+  Scratch scratch;
+  const imageio::Image images[] = {testimages::generate(testimages::Pattern::Mix, 150, 97, 3, 8),
+                                   testimages::generate(testimages::Pattern::Edges, 61, 40, 3, 16),
+                                   testimages::generate(testimages::Pattern::ZonePlate, 77, 50, 1, 8)};
+  for (const imageio::Image& image : images) {
+    const fs::path file = scratch / (image.channels == 1 ? "in.pgm" : "in.ppm");
+    imageio::write_image(file.string(), image);
+    auto packed_source = [&] {
+      std::optional<imageio::PackedImage> packed = imageio::read_packed_if_native(file.string());
+      EXPECT_TRUE(packed.has_value());
+      return codec::to_source_image(std::move(*packed), file.string());
+    };
+    std::vector<codec::EncodeParams> settings(5);
+    settings[1].tile_width = settings[1].tile_height = 32;
+    settings[1].tile_x0 = settings[1].tile_y0 = 5;
+    settings[1].image_x0 = settings[1].image_y0 = 9;
+    for (std::size_t i = 2; i < settings.size(); ++i) settings[i].lossless = false;
+    settings[3].layers = {{codec::LayerTarget::Kind::Bytes, 1500}};
+    settings[4].layers = {{codec::LayerTarget::Kind::Psnr, 36}};
+    for (std::size_t i = 0; i < settings.size(); ++i) {
+      SCOPED_TRACE(file.filename().string() + " " + std::to_string(image.bits_per_sample) + " bits, setting " + std::to_string(i));
+      const std::vector<std::uint8_t> expected = codec::encode(to_source(image), settings[i], codec::FileFormat::Codestream);
+      EXPECT_EQ(codec::encode(packed_source(), settings[i], codec::FileFormat::Codestream), expected);  // given up
+      const codec::SourceImage kept = packed_source();
+      EXPECT_EQ(codec::encode(kept, settings[i], codec::FileFormat::Codestream), expected);
+    }
+  }
+}
+
+}  // namespace

@@ -8,24 +8,26 @@
 #include <cstdint>
 #include <cstdlib>
 #include <span>
+#include <vector>
 
 #include "imageio/pnm.h"
 
-// The planar reader must agree with the interleaved one on every input: the same error or the
+// The packed reader must agree with the interleaved one on every input: the same error or the
 // same samples.
-void check_planar(std::span<const std::uint8_t> bytes, const imageio::Image* image) {
+void check_packed(std::span<const std::uint8_t> bytes, const imageio::Image* image) {
   try {
-    const imageio::PlanarImage planar = imageio::parse_pnm_planar(bytes, "fuzz-input");
-    if (image == nullptr || planar.width != image->width || planar.height != image->height ||
-        planar.channels != image->channels || planar.bits_per_sample != image->bits_per_sample ||
-        planar.planes.size() != std::size_t(image->channels))
+    const imageio::PackedImage packed = imageio::parse_pnm_packed(bytes, "fuzz-input");
+    if (image == nullptr || packed.width != image->width || packed.height != image->height ||
+        packed.channels != image->channels || packed.bits_per_sample != image->bits_per_sample ||
+        packed.bytes_per_sample != (packed.bits_per_sample > 8 ? 2 : 1) || packed.raster == nullptr)
       std::abort();
-    const std::size_t pixels = std::size_t(image->width) * std::size_t(image->height);
-    for (std::size_t c = 0; c < planar.planes.size(); ++c) {
-      if (planar.planes[c].size() != pixels) std::abort();
-      for (std::size_t p = 0; p < pixels; ++p)
-        if (float(planar.planes[c][p]) != image->pixels[p * planar.planes.size() + c]) std::abort();
-    }
+    std::vector<std::int32_t> row(std::size_t(image->width));
+    for (int y = 0; y < image->height; ++y)
+      for (int c = 0; c < image->channels; ++c) {
+        packed.unpack_row(c, y, 0, image->width, row.data());
+        for (int x = 0; x < image->width; ++x)
+          if (float(row[std::size_t(x)]) != image->at(x, y, c)) std::abort();
+      }
   } catch (const imageio::IoError&) {
     if (image != nullptr) std::abort();
   }
@@ -46,10 +48,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (float v : image.pixels) {
       if (!(v >= 0 && v <= top)) std::abort();
     }
-    check_planar(bytes, &image);
+    check_packed(bytes, &image);
   } catch (const imageio::IoError&) {
     // Expected for malformed input.
-    check_planar(bytes, nullptr);
+    check_packed(bytes, nullptr);
   }
   return 0;
 }

@@ -1,6 +1,7 @@
 // File-level PNM reading and writing; parsing lives in pnm_parse.cpp.
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "atomic_file.h"
@@ -34,9 +35,11 @@ Image read_pnm(const std::string& path) {
   return parse_pnm(file.bytes(), path);
 }
 
-PlanarImage read_pnm_planar(const std::string& path) {
-  const detail::FileBytes file(path);
-  return parse_pnm_planar(file.bytes(), path);
+PackedImage read_pnm_packed(const std::string& path) {
+  auto file = std::make_shared<const detail::FileBytes>(path);
+  PackedImage image = parse_pnm_packed(file->bytes(), path);
+  if (!image.storage) image.storage = std::move(file);  // the raster is the file's
+  return image;
 }
 
 void write_pnm(const std::string& path, const Image& image) {

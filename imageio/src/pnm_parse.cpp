@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string_view>
 #include <vector>
 
@@ -230,23 +231,43 @@ struct InterleavedSink {
   }
 };
 
-struct PlanarSink {
-  PlanarImage& image;
-  std::vector<std::int32_t*> planes;  // each plane's data, so a store cannot make the loop reload it
+// Samples decoded into a packed raster of our own (PackedImage), for the files whose raster is
+// not already one.
+struct PackedSink {
+  PackedImage& image;
+  std::uint8_t* raster = nullptr;
   void allocate(int width, int height, int channels, int bits, std::size_t samples) {
     image.width = width;
     image.height = height;
     image.channels = channels;
     image.bits_per_sample = bits;
-    // One by one: assign(n, prototype) would fill a prototype plane and copy it, touching one
-    // more image's worth of memory.
-    image.planes.resize(std::size_t(channels));
-    for (auto& plane : image.planes) {
-      resize_with_huge_pages(plane, samples / std::size_t(channels));
-      planes.push_back(plane.data());
+    image.bytes_per_sample = bits > 8 ? 2 : 1;
+    auto owned = std::make_shared<std::vector<std::uint8_t, UninitialisedAllocator<std::uint8_t>>>();
+    resize_with_huge_pages(*owned, samples * std::size_t(image.bytes_per_sample));
+    raster = owned->data();
+    image.raster = raster;
+    image.storage = std::move(owned);
+  }
+  void put(std::size_t pixel, int channel, unsigned value) {
+    const std::size_t i = pixel * std::size_t(image.channels) + std::size_t(channel);
+    if (image.bytes_per_sample == 1) {
+      raster[i] = std::uint8_t(value);
+    } else {
+      raster[2 * i] = std::uint8_t(value >> 8);
+      raster[2 * i + 1] = std::uint8_t(value);
     }
   }
-  void put(std::size_t pixel, int channel, unsigned value) { planes[std::size_t(channel)][pixel] = std::int32_t(value); }
+  // A raw raster whose samples need no check (maxval 255 or 65535) is taken where it lies.
+  bool take_raster(const std::uint8_t* data, int width, int height, int channels, int maxval) {
+    if (maxval != 255 && maxval != 65535) return false;
+    image.width = width;
+    image.height = height;
+    image.channels = channels;
+    image.bits_per_sample = maxval == 255 ? 8 : 16;
+    image.bytes_per_sample = maxval == 255 ? 1 : 2;
+    image.raster = data;
+    return true;
+  }
 };
 
 template <class Sink>
@@ -339,6 +360,9 @@ void parse_into(std::span<const std::uint8_t> bytes, const std::string& name_for
                                              : samples * (maxval > 255 ? 2 : 1);
   check_available(reader, needed, available);
   // Anything after the raster is left alone: it may be the next image.
+  if constexpr (requires { sink.take_raster(bytes.data(), 0, 0, 0, 0); })
+    if (!format.bitmap && sink.take_raster(bytes.data() + data_start, shape.width, shape.height, shape.channels, maxval))
+      return;
   sink.allocate(shape.width, shape.height, shape.channels, shape.bits_per_sample, samples);
   if (format.bitmap) {
     read_raw_bitmap(bytes.data() + data_start, shape.width, shape.height, sink);
@@ -356,12 +380,30 @@ Image parse_pnm(std::span<const std::uint8_t> bytes, const std::string& name_for
   return image;
 }
 
-PlanarImage parse_pnm_planar(std::span<const std::uint8_t> bytes, const std::string& name_for_errors) {
-  PlanarImage planar;
-  PlanarSink sink{planar, {}};
+PackedImage parse_pnm_packed(std::span<const std::uint8_t> bytes, const std::string& name_for_errors) {
+  PackedImage packed;
+  PackedSink sink{packed};
   Image shape;  // the header's fields, for the checks and messages
   parse_into(bytes, name_for_errors, sink, shape);
-  return planar;
+  return packed;
+}
+
+void PackedImage::unpack_row(int channel, int y, int x0, int n, std::int32_t* out) const {
+  const auto step = std::size_t(channels);
+  const std::uint8_t* src = raster + std::size_t(y) * row_bytes() +
+                            (std::size_t(x0) * step + std::size_t(channel)) * std::size_t(bytes_per_sample);
+  if (bytes_per_sample == 1) {
+    if (channels == 3) {  // the common case, with a constant stride the compiler can vectorise
+      for (int i = 0; i < n; ++i) out[i] = src[3 * std::size_t(i)];
+      return;
+    }
+    for (int i = 0; i < n; ++i) out[i] = src[std::size_t(i) * step];
+    return;
+  }
+  for (int i = 0; i < n; ++i) {
+    const std::uint8_t* s = src + 2 * std::size_t(i) * step;
+    out[i] = std::int32_t(s[0]) << 8 | s[1];
+  }
 }
 
 }  // namespace imageio

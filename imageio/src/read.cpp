@@ -18,9 +18,9 @@ Image read_image(const std::string& path) {
   return detail::read_through_module(path);
 }
 
-std::optional<PlanarImage> read_planar_if_native(const std::string& path) {
+std::optional<PackedImage> read_packed_if_native(const std::string& path) {
   if (!detail::has_pnm_extension(path)) return std::nullopt;
-  return read_pnm_planar(path);
+  return read_pnm_packed(path);
 }
 
 Image read_greyscale(const std::string& path) {

@@ -183,7 +183,7 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
   dwt_cpu::ThreadPool pool(params.threads);
   report.threads = pool.size();
   double samples = 0;
-  for (const SourceComponent& c : image.components) samples += static_cast<double>(c.samples.size());
+  for (std::size_t c = 0; c < image.components.size(); ++c) samples += static_cast<double>(image.width) * image.height;
   DwtChoice dwt = choose_dwt(params, samples, pool);
   report.dwt_backend = dwt.name;
   report.dwt_reason = dwt.reason;

@@ -68,14 +68,17 @@ double rebuilt_squared_error(const SourceImage& image, const CodingPlan& plan, c
       const double lo = src.is_signed ? -std::ldexp(1.0, src.precision - 1) : 0.0;
       const double hi = src.is_signed ? std::ldexp(1.0, src.precision - 1) - 1 : std::ldexp(1.0, src.precision) - 1;
       const auto w = static_cast<std::size_t>(tc.rect.width());
-      for (std::size_t y = 0; y < static_cast<std::size_t>(tc.rect.height()); ++y)
+      const std::size_t sx = static_cast<std::size_t>(tc.rect.x0 - plan.grid.image.x0);
+      std::vector<std::int32_t> scratch(w);
+      for (std::size_t y = 0; y < static_cast<std::size_t>(tc.rect.height()); ++y) {
+        const std::size_t sy = static_cast<std::size_t>(tc.rect.y0 - plan.grid.image.y0) + y;
+        const std::int32_t* original = source_row(image, c, sy, sx, w, scratch.data());
         for (std::size_t x = 0; x < w; ++x) {
           const double v = std::clamp(std::round(planes[c][y * w + x] + shift), lo, hi);
-          const std::size_t sy = static_cast<std::size_t>(tc.rect.y0 - plan.grid.image.y0) + y;
-          const std::size_t sx = static_cast<std::size_t>(tc.rect.x0 - plan.grid.image.x0) + x;
-          const double d = v - src.samples[sy * static_cast<std::size_t>(image.width) + sx];
+          const double d = v - original[x];
           total += d * d;
         }
+      }
     }
   }
   return total;

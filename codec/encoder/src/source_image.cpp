@@ -21,30 +21,29 @@ void check_shape(int width, int height, int channels, int bits, const std::strin
 
 }  // namespace
 
-SourceImage to_source_image(imageio::PlanarImage&& image, const std::string& path) {
+SourceImage to_source_image(imageio::PackedImage&& image, const std::string& path) {
   check_shape(image.width, image.height, image.channels, image.bits_per_sample, path);
-  const std::size_t n = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
-  if (image.planes.size() != static_cast<std::size_t>(image.channels))
-    throw EncodeError(path + ": " + std::to_string(image.planes.size()) + " planes for " + std::to_string(image.channels) +
-                      " components");
+  if (image.raster == nullptr || (image.bytes_per_sample != 1 && image.bytes_per_sample != 2) ||
+      image.bits_per_sample > 8 * image.bytes_per_sample)
+    throw EncodeError(path + ": " + std::to_string(image.bits_per_sample) + "-bit samples packed in " +
+                      std::to_string(image.bytes_per_sample) + " bytes");
   SourceImage out;
   out.width = image.width;
   out.height = image.height;
-  const std::int32_t top = (std::int32_t{1} << image.bits_per_sample) - 1;
-  for (auto& plane : image.planes) {
-    if (plane.size() != n) throw EncodeError(path + ": a plane of " + std::to_string(plane.size()) + " samples, not " + std::to_string(n));
-    std::int32_t lo = 0, hi = 0;
-    for (const std::int32_t v : plane) lo = std::min(lo, v), hi = std::max(hi, v);
-    if (lo < 0 || hi > top)
-      throw EncodeError(path + ": sample value " + std::to_string(lo < 0 ? lo : hi) + " does not fit " +
-                        std::to_string(image.bits_per_sample) + "-bit unsigned integers");
+  for (int c = 0; c < image.channels; ++c) {
     SourceComponent comp;
     comp.precision = image.bits_per_sample;
-    comp.samples = std::move(plane);
     out.components.push_back(std::move(comp));
   }
-  image.planes.clear();
+  out.packed = std::make_shared<const imageio::PackedImage>(std::move(image));
   return out;
+}
+
+const std::int32_t* source_row(const SourceImage& image, std::size_t c, std::size_t y, std::size_t x0, std::size_t n,
+                               std::int32_t* scratch) {
+  if (!image.packed) return image.components[c].samples.data() + y * static_cast<std::size_t>(image.width) + x0;
+  image.packed->unpack_row(static_cast<int>(c), static_cast<int>(y), static_cast<int>(x0), static_cast<int>(n), scratch);
+  return scratch;
 }
 
 SourceImage to_source_image(const imageio::Image& image, const std::string& path) {

@@ -151,7 +151,7 @@ struct TilePlanes {
 // Whether a lossless tile can take the source's planes and transform them where they are: the
 // caller gave the image up, and the tile covers every component whole.
 bool can_take_source(const SourceImage* consumable, const CodingPlan& plan, const Tile& tile) {
-  if (consumable == nullptr) return false;
+  if (consumable == nullptr || consumable->packed) return false;
   for (std::size_t c = 0; c < tile.components.size(); ++c) {
     const Rect& r = tile.components[c].rect;
     if (r.x0 != plan.grid.image.x0 || r.y0 != plan.grid.image.y0 || r.width() != consumable->width ||
@@ -195,12 +195,14 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
   const bool mct = plan.rct || plan.ict;
   const TileComponent& first = tile.components[0];
   const auto w = static_cast<std::size_t>(first.rect.width()), h = static_cast<std::size_t>(first.rect.height());
-  auto source_row = [&](std::size_t c, std::size_t y) {
+  // Row y of tile-component c: in the plane it is transformed in, in the source's plane, or
+  // unpacked from a packed source into `scratch` (room for the row).
+  auto source_row = [&](std::size_t c, std::size_t y, std::int32_t* scratch) {
     const TileComponent& tc = tile.components[c];
     const std::size_t sy = static_cast<std::size_t>(tc.rect.y0 - plan.grid.image.y0) + y;
     const std::size_t sx = static_cast<std::size_t>(tc.rect.x0 - plan.grid.image.x0);
-    const std::int32_t* samples = in_place ? out.integers[c].data() : image.components[c].samples.data();
-    return samples + sy * static_cast<std::size_t>(image.width) + sx;
+    if (in_place) return static_cast<const std::int32_t*>(out.integers[c].data() + sy * static_cast<std::size_t>(image.width) + sx);
+    return codec::source_row(image, c, sy, sx, static_cast<std::size_t>(tc.rect.width()), scratch);
   };
   auto shift_of = [&](std::size_t c) {
     const SourceComponent& src = image.components[c];
@@ -210,8 +212,10 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
   if (mct) {
     const std::int32_t s0 = shift_of(0), s1 = shift_of(1), s2 = shift_of(2);
     for_row_chunks(pool, h, [&](std::size_t y0, std::size_t y1) {
+      std::vector<std::int32_t> scratch(image.packed ? 3 * w : 0);
       for (std::size_t y = y0; y < y1; ++y) {
-        const std::int32_t *r = source_row(0, y), *g = source_row(1, y), *b = source_row(2, y);
+        const std::int32_t *r = source_row(0, y, scratch.data()), *g = source_row(1, y, scratch.data() + w),
+                           *b = source_row(2, y, scratch.data() + 2 * w);
         if (lossless) {
           rct_forward_row(r, g, b, s0, s1, s2, out.integers[0].data() + y * w, out.integers[1].data() + y * w,
                           out.integers[2].data() + y * w, w);
@@ -229,8 +233,9 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
     const auto cw = static_cast<std::size_t>(tc.rect.width()), ch = static_cast<std::size_t>(tc.rect.height());
     const std::int32_t shift = shift_of(c);
     for_row_chunks(pool, ch, [&](std::size_t y0, std::size_t y1) {
+      std::vector<std::int32_t> scratch(image.packed ? cw : 0);
       for (std::size_t y = y0; y < y1; ++y) {
-        const std::int32_t* src = source_row(c, y);
+        const std::int32_t* src = source_row(c, y, scratch.data());
         if (lossless)
           for (std::size_t x = 0; x < cw; ++x) out.integers[c][y * cw + x] = src[x] - shift;
         else

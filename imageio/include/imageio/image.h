@@ -3,6 +3,7 @@
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "imageio/error.h"
@@ -42,14 +43,25 @@ struct Image {
   }
 };
 
-// Integer samples, one plane per channel (each row-major, top row first): what an encoder that
-// codes components apart takes, with no conversion. Unsigned, 1..16 bits.
-struct PlanarImage {
+// Integer samples as a raw PNM holds them: interleaved, 1 byte each (maxval up to 255) or 2 bytes
+// big-endian, top row first. What an encoder takes without an image-sized conversion: it unpacks
+// the rows it works on. The raster of a raw file with maxval 255 or 65535 is the file's own bytes
+// (mapped from the page cache; `storage` keeps them, or the caller's bytes for parse_pnm_packed);
+// other files (plain text, bitmaps, other maxvals) are decoded into `storage`. Unsigned, 1..16 bits.
+struct PackedImage {
   int width = 0;
   int height = 0;
   int channels = 0;
   int bits_per_sample = 0;
-  std::vector<SamplePlane> planes;
+  int bytes_per_sample = 1;  // 1 or 2 (big-endian)
+  const std::uint8_t* raster = nullptr;
+  std::shared_ptr<const void> storage;
+
+  std::size_t row_bytes() const {
+    return static_cast<std::size_t>(width) * static_cast<std::size_t>(channels) * static_cast<std::size_t>(bytes_per_sample);
+  }
+  // Samples x0 .. x0 + n - 1 of `channel` in row y, into out[0 .. n - 1] (unchecked).
+  void unpack_row(int channel, int y, int x0, int n, std::int32_t* out) const;
 };
 
 }  // namespace imageio

@@ -42,9 +42,11 @@ Image parse_pnm(std::span<const std::uint8_t> bytes, const std::string& name_for
 
 Image read_pnm(const std::string& path);
 
-// The same file, the same checks and errors, straight into one integer plane per channel.
-PlanarImage parse_pnm_planar(std::span<const std::uint8_t> bytes, const std::string& name_for_errors);
-PlanarImage read_pnm_planar(const std::string& path);
+// The same file, the same checks and errors, as its integer samples. A raw raster with maxval 255
+// or 65535 is not copied: parse_pnm_packed's result then points into `bytes`, which must outlive
+// it, and read_pnm_packed's keeps the mapped file.
+PackedImage parse_pnm_packed(std::span<const std::uint8_t> bytes, const std::string& name_for_errors);
+PackedImage read_pnm_packed(const std::string& path);
 
 // Writes a raw PNM: 1 channel as P5, 3 channels as P6, any other channel
 // count is an IoError. The file's maxval is 2^bits_per_sample - 1, so samples

@@ -16,9 +16,10 @@ namespace imageio {
 // Throws IoError for missing, unreadable, truncated or unsupported files.
 Image read_image(const std::string& path);
 
-// PNM files (by name, as read_image decides) straight into integer planes, with read_pnm's
-// checks and errors; nothing for any other file, which read_image then reads.
-std::optional<PlanarImage> read_planar_if_native(const std::string& path);
+// PNM files (by name, as read_image decides) as their integer samples (PackedImage: a raw file's
+// raster is used where it lies), with read_pnm's checks and errors; nothing for any other file,
+// which read_image then reads.
+std::optional<PackedImage> read_packed_if_native(const std::string& path);
 
 // read_image, but the image must have exactly one channel.
 Image read_greyscale(const std::string& path);
