@@ -131,6 +131,7 @@ void run_decouple(const AppOptions& o) {
   s.params = resolve_params(o, 5);
   s.guard = o.guard;
   check_levels(o.input, s.params, image);
+  if (s.params.levels < 1) throw std::invalid_argument("decouple needs at least one decomposition level (--levels)");
   auto engine = make_engine(o);
   announce(o, *engine);
   const auto t0 = Clock::now();
@@ -152,6 +153,11 @@ void run_deform(const AppOptions& o) {
   std::vector<wa::ScaleSpec> specs;
   const auto names = wa::axis_names();
   for (const std::string& b : o.bands) specs.push_back(wa::parse_scale_spec(b, names, params.levels));
+  try {
+    dwt::validate(params, net.columns, net.rows);
+  } catch (const dwt::DwtError& e) {
+    throw std::runtime_error((o.head ? std::string("the built-in head") : o.input) + ": " + e.what());
+  }
   auto engine = make_engine(o);
   announce(o, *engine);
   const auto t0 = Clock::now();
