@@ -50,18 +50,28 @@ ParsedCommandLine parse_command_line(int argc, char** argv) {
   CLI::App* inverse = app.add_subcommand("inverse", "Wavelet coefficients (PFM) -> image");
   add_transform_options(*forward, raw, false);
   add_transform_options(*inverse, raw, true);
+  AppOptions app_options;
+  const std::vector<CLI::App*> app_commands = add_app_commands(app, app_options);
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
-    return {std::nullopt, app.exit(e)};  // --help
+    return {std::nullopt, std::nullopt, app.exit(e)};  // --help
   } catch (const CLI::ParseError& e) {
     // CLI11's own report spans two lines; dwtool's contract is one.
     std::cerr << "dwtool: " << one_line(e.what()) << " (see --help)\n";
-    return {std::nullopt, kUsageExitCode};
+    return {std::nullopt, std::nullopt, kUsageExitCode};
+  }
+  for (std::size_t i = 0; i < app_commands.size(); ++i) {
+    if (app.got_subcommand(app_commands[i])) {
+      app_options.command = static_cast<AppCommand>(i);
+      ParsedCommandLine parsed;
+      parsed.app = app_options;
+      return parsed;
+    }
   }
   raw.direction = app.got_subcommand(inverse) ? Direction::Inverse : Direction::Forward;
-  return {raw, 0};
+  return {raw, std::nullopt, 0};
 }
 
 }  // namespace dwtool

@@ -4,11 +4,13 @@
 #include <optional>
 
 #include "request.h"
+#include "wavelet_commands.h"
 
 namespace dwtool {
 
 struct ParsedCommandLine {
-  std::optional<RawOptions> options;  // empty: nothing to run, exit with exit_code
+  std::optional<RawOptions> options;  // forward or inverse
+  std::optional<AppOptions> app;      // edit, combine, decouple or deform; both empty: exit with exit_code
   int exit_code = 0;
 };
 

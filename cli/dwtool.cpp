@@ -3,6 +3,8 @@
 //
 //   dwtool forward -i image.png -o coeffs.pfm --kernel 97 --levels 5 --backend gpu
 //   dwtool inverse -i coeffs.pfm -o image.png --kernel 97 --levels 5
+//   dwtool edit -i in.png -o out.png --space ycc --band Y:1:*=1.8 --backend gpu   (and combine,
+//   decouple, deform: the wavelet applications of thesis 4.7, cli/wavelet_commands.h)
 //
 // Any failure prints exactly one line "dwtool: ..." on stderr and exits with 1 (2 for usage
 // errors); no output file is left behind, since it is only written, atomically, after success.
@@ -19,6 +21,10 @@ int main(int argc, char** argv) {
   constexpr int kRuntimeExitCode = 1;
   try {
     const dwtool::ParsedCommandLine parsed = dwtool::parse_command_line(argc, argv);
+    if (parsed.app) {
+      dwtool::run_app(*parsed.app);
+      return 0;
+    }
     if (!parsed.options) return parsed.exit_code;
     dwtool::run(dwtool::resolve(*parsed.options));
     return 0;

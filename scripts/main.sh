@@ -38,6 +38,9 @@ opj_decompress -i "$work/lossy.j2k" -o "$work/lossy.png" >/dev/null
 echo "== DWT benchmark"
 "$bin/dwt_bench" --sizes 512,1024,2048,4096 --reps 3
 
+echo "== Wavelet applications of thesis 4.7 (edit, combine, decouple, deform) into $work/wavelet_apps"
+bash scripts/wavelet_apps.sh "$bin" "$work"
+
 echo "== Table 4.1 / Figure 4.13 (bench/table41) and Table 4.2 (bench/psnr)"
 python3=/usr/bin/python3
 $python3 bench/table41 --sizes 128,256,512,1024,2048 --runs 3 --plot "$work/figure413.png"

@@ -1,8 +1,10 @@
 #pragma once
 #include <memory>
+#include <span>
 #include <string>
 
 #include "dwt/backend.h"
+#include "dwt/band_operation.h"
 #include "glcontext/context.h"
 
 namespace dwt_gpu {
@@ -41,6 +43,15 @@ class GpuBackend final : public dwt::DwtBackend {
   void forward(dwt::PlaneSpan<std::int32_t> plane, const dwt::DwtParams& params) override;
   void inverse(dwt::PlaneSpan<std::int32_t> plane, const dwt::DwtParams& params) override;
 
+  // Thesis 4.7's interactive editing with the coefficients kept on the GPU: forward-transforms
+  // `first` (and `second` when it has data, else no second plane is used), applies `ops` as one
+  // fragment pass (a quad per band rectangle; rectangles must not overlap, samples outside all of
+  // them are kept), inverse-transforms, and reads the result back into `first` once. Nothing is
+  // read back in between. Computes what forward, dwt::apply_band_operations and inverse compute.
+  // Timings: upload (both planes), compute (transforms and band pass), download.
+  void process_bands(dwt::PlaneSpan<float> first, dwt::PlaneSpan<const float> second, const dwt::DwtParams& params,
+                     std::span<const dwt::BandOperation> ops);
+
   // The GL renderer line (renderer | version | platform); creates the context if needed.
   std::string renderer();
   const GpuTimings& last_timings() const { return timings_; }
@@ -50,6 +61,12 @@ class GpuBackend final : public dwt::DwtBackend {
   void ensure_ready();
   void prepare(std::unique_ptr<glc::Context> context);
   void transform(dwt::PlaneSpan<float> plane, const dwt::DwtParams& params, bool inverse);
+  // The stages both entry points are made of. Between them the data lives in pixel buffer 0.
+  void begin(const dwt::DwtParams& params, int width, int height);
+  void upload(dwt::PlaneSpan<const float> plane);
+  void run_levels(const dwt::DwtParams& params, bool inverse);
+  void run_band_pass(std::span<const dwt::BandOperation> ops, bool reads_second);
+  void download(dwt::PlaneSpan<float> plane);
 
   glc::Platform platform_;
   std::unique_ptr<State> state_;
