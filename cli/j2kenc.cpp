@@ -13,10 +13,8 @@
 #include <cstdio>
 #include <string>
 
-#include "codec/encoder/encoder.h"
-#include "codec/structure/error.h"
+#include "gpuj2k/encoder.h"
 #include "imageio/atomic_write.h"
-#include "imageio/read.h"
 #include "number_pairs.h"
 #include "one_line.h"
 #include "quiet_stderr.h"
@@ -33,16 +31,18 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-codec::Progression parse_order(const std::string& name) {
+gpuj2k::Progression parse_order(const std::string& name) {
   const char* names[] = {"LRCP", "RLCP", "RPCL", "PCRL", "CPRL"};
+  const gpuj2k::Progression orders[] = {gpuj2k::Progression::LRCP, gpuj2k::Progression::RLCP, gpuj2k::Progression::RPCL,
+                                        gpuj2k::Progression::PCRL, gpuj2k::Progression::CPRL};
   for (int i = 0; i < 5; ++i)
-    if (name == names[i]) return static_cast<codec::Progression>(i);
+    if (name == names[i]) return orders[i];
   throw std::invalid_argument("unknown progression order '" + name + "' (expected LRCP, RLCP, RPCL, PCRL or CPRL)");
 }
 
 // Code-block mode switches (T.800 Table A.19), named as in common encoders' documentation.
-codec::t1::BlockStyle parse_modes(const std::string& list) {
-  codec::t1::BlockStyle s;
+gpuj2k::CodeBlockModes parse_modes(const std::string& list) {
+  gpuj2k::CodeBlockModes s;
   std::size_t start = 0;
   while (start <= list.size() && !list.empty()) {
     const std::size_t comma = list.find(',', start);
@@ -130,9 +130,10 @@ JasperOptions parse_jasper(const std::vector<std::string>& items) {
 // terminal: tier-1 over the code-blocks is the long stage, and the encoder reports each one.
 class ProgressBar {
  public:
-  explicit ProgressBar(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+  // Writes to file descriptor `fd` (stderr's own, while libraries' output is silenced).
+  ProgressBar(bool enabled, int fd) : enabled_(enabled), fd_(fd), start_(std::chrono::steady_clock::now()) {}
   ~ProgressBar() {
-    if (shown_) std::fprintf(stderr, "\r%60s\r", "");  // leave the line clean for the summary
+    if (shown_) ::dprintf(fd_, "\r%60s\r", "");  // leave the line clean for the summary
   }
   void update(std::size_t done, std::size_t total) {
     if (!enabled_ || total == 0) return;
@@ -142,28 +143,27 @@ class ProgressBar {
     last_ = now;
     shown_ = true;
     const int filled = static_cast<int>(30.0 * static_cast<double>(done) / static_cast<double>(total));
-    std::fprintf(stderr, "\rj2kenc: [%-30s] %3d%% code-blocks", std::string(static_cast<std::size_t>(filled), '#').c_str(),
-                 static_cast<int>(100.0 * static_cast<double>(done) / static_cast<double>(total)));
-    std::fflush(stderr);
+    ::dprintf(fd_, "\rj2kenc: [%-30s] %3d%% code-blocks", std::string(static_cast<std::size_t>(filled), '#').c_str(),
+              static_cast<int>(100.0 * static_cast<double>(done) / static_cast<double>(total)));
   }
 
  private:
   bool enabled_;
+  int fd_;
   bool shown_ = false;
   std::mutex mutex_;
   std::chrono::steady_clock::time_point start_, last_{};
 };
 
 // The stage report of --timing: one line per stage, or one JSON object, on stderr.
-void print_timing(const std::string& mode, const codec::EncodeReport& r, double read_ms, double output_ms,
-                  double measured_ms) {
-  const codec::StageTimes& t = r.times;
+void print_timing(const std::string& mode, const gpuj2k::EncodeReport& r, double output_ms, double measured_ms) {
   const std::pair<const char*, double> stages[] = {
-      {"input read", read_ms},        {"setup", t.setup},                   {"GL context creation", t.gl_context}, {"shader compilation", t.shader_compile},
-      {"level shift + MCT", t.level_shift}, {"upload", t.upload},           {"DWT compute", t.dwt},
-      {"download", t.download},      {"quantization + tier-1", t.tier1},
-      {"rate control", t.rate_control}, {"tier-2", t.tier2},             {"output", output_ms}};
-  const double sum = t.total() + read_ms + output_ms;
+      {"input read", r.read_ms},        {"setup", r.setup_ms},                   {"GL context creation", r.gl_context_ms}, {"shader compilation", r.shader_compile_ms},
+      {"level shift + MCT", r.level_shift_ms}, {"upload", r.upload_ms},           {"DWT compute", r.dwt_ms},
+      {"download", r.download_ms},      {"quantization + tier-1", r.tier1_ms},
+      {"rate control", r.rate_control_ms}, {"tier-2", r.tier2_ms},             {"output", output_ms}};
+  double sum = 0;
+  for (const auto& stage : stages) sum += stage.second;
   if (mode == "json") {
     std::string json = "{\"dwt\": \"";
     for (char ch : r.dwt_backend) json += (ch == '"' || ch == '\\') ? std::string("\\") + ch : std::string(1, ch);
@@ -240,9 +240,9 @@ int main(int argc, char** argv) {
 
   try {
     const std::string ext = lower_extension(output);
-    codec::FileFormat format;
-    if (ext == ".jp2") format = codec::FileFormat::Jp2;
-    else if (ext == ".j2k" || ext == ".j2c" || ext == ".jpc") format = codec::FileFormat::Codestream;
+    gpuj2k::Format format;
+    if (ext == ".jp2") format = gpuj2k::Format::Jp2;
+    else if (ext == ".j2k" || ext == ".j2c" || ext == ".jpc") format = gpuj2k::Format::Codestream;
     else throw std::invalid_argument(output + ": unknown output type (use .jp2, .j2k, .j2c or .jpc)");
     const JasperOptions jo = parse_jasper(jasper);
     if (jo.lossless) lossless = lossless || *jo.lossless;
@@ -252,75 +252,62 @@ int main(int argc, char** argv) {
     if (targets_given > 1) throw std::invalid_argument("give one of --rate, --ratio, --psnr, --size and -O rate");
     if (lossless && targets_given) throw std::invalid_argument("rate and quality targets need lossy coding (drop --lossless)");
 
-    codec::EncodeParams params;
-    params.lossless = lossless;
-    params.base_step = base_step;
-    if (dwt == "cpu") params.dwt = codec::DwtDevice::Cpu;
-    else if (dwt == "gpu") params.dwt = codec::DwtDevice::Gpu;
-    else if (dwt == "auto") params.dwt = codec::DwtDevice::Auto;
+    gpuj2k::EncodeOptions options;
+    options.format = format;
+    options.lossless = lossless;
+    options.base_step = base_step;
+    if (dwt == "cpu") options.dwt = gpuj2k::DwtDevice::Cpu;
+    else if (dwt == "gpu") options.dwt = gpuj2k::DwtDevice::Gpu;
+    else if (dwt == "auto") options.dwt = gpuj2k::DwtDevice::Auto;
     else throw std::invalid_argument("--dwt takes cpu, gpu or auto, got \"" + dwt + "\"");
-    params.levels = levels;
-    params.threads = threads;
-    params.skip_passes = !every_pass;
-    params.guard_bits = guard_bits;
-    params.sop = sop;
-    params.eph = eph;
-    params.order = parse_order(order);
-    if (!modes.empty()) params.block_style = parse_modes(modes);
-    if (!comment.empty()) params.comment = comment;
-    if (!tile.empty()) std::tie(params.tile_width, params.tile_height) = cli::parse_pair(tile, 'x', "--tile", kMaxCoordinate);
-    if (!tile_origin.empty()) std::tie(params.tile_x0, params.tile_y0) = cli::parse_pair(tile_origin, ',', "--tile-origin", kMaxCoordinate);
-    if (!origin.empty()) std::tie(params.image_x0, params.image_y0) = cli::parse_pair(origin, ',', "--origin", kMaxCoordinate);
+    options.levels = levels;
+    options.threads = threads;
+    options.code_every_pass = every_pass;
+    options.guard_bits = guard_bits;
+    options.sop = sop;
+    options.eph = eph;
+    options.progression = parse_order(order);
+    if (!modes.empty()) options.modes = parse_modes(modes);
+    if (!comment.empty()) options.comment = comment;
+    if (!tile.empty()) std::tie(options.tile_width, options.tile_height) = cli::parse_pair(tile, 'x', "--tile", kMaxCoordinate);
+    if (!tile_origin.empty()) std::tie(options.tile_x0, options.tile_y0) = cli::parse_pair(tile_origin, ',', "--tile-origin", kMaxCoordinate);
+    if (!origin.empty()) std::tie(options.image_x0, options.image_y0) = cli::parse_pair(origin, ',', "--origin", kMaxCoordinate);
     const auto cb = cli::parse_pair(codeblock, 'x', "--codeblock", 1 << 20);
-    params.codeblock_width = static_cast<int>(cb.first);
-    params.codeblock_height = static_cast<int>(cb.second);
+    options.codeblock_width = static_cast<int>(cb.first);
+    options.codeblock_height = static_cast<int>(cb.second);
     if (!precincts.empty())
       for (const auto& [w, h] : cli::parse_size_list(precincts, "--precincts", 1 << 20))
-        params.precincts.emplace_back(static_cast<int>(w), static_cast<int>(h));
-    if (params.tile_width == 0 && !tile.empty()) throw std::invalid_argument("--tile sizes must be positive");
-    if (jo.tile_width) params.tile_width = *jo.tile_width;
-    if (jo.tile_height) params.tile_height = *jo.tile_height;
-    if (jo.cblk_width) params.codeblock_width = *jo.cblk_width;
-    if (jo.cblk_height) params.codeblock_height = *jo.cblk_height;
-    codec::validate(params);  // before reading: option errors should not wait for a large image
-
+        options.precincts.emplace_back(static_cast<int>(w), static_cast<int>(h));
+    if (options.tile_width == 0 && !tile.empty()) throw std::invalid_argument("--tile sizes must be positive");
+    if (jo.tile_width) options.tile_width = *jo.tile_width;
+    if (jo.tile_height) options.tile_height = *jo.tile_height;
+    if (jo.cblk_width) options.codeblock_width = *jo.cblk_width;
+    if (jo.cblk_height) options.codeblock_height = *jo.cblk_height;
+    if (!rate.empty()) options.rates_bpp = parse_numbers(rate, "--rate");
+    if (!ratio.empty()) options.ratios = parse_numbers(ratio, "--ratio");
+    for (double r : jo.rates) options.ratios.push_back(1.0 / r);  // JasPer's rate: a fraction of the raw size
+    if (size > 0) options.size_bytes = size;
+    if (!psnr.empty()) options.psnr_db = parse_numbers(psnr, "--psnr");
     if (!timing.empty() && timing != "text" && timing != "json")
       throw std::invalid_argument("--timing takes text or json, got \"" + timing + "\"");
+
     using Clock = std::chrono::steady_clock;
     auto since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
     const auto t0 = Clock::now();
-    codec::SourceImage image = [&] {
-      // PNM goes straight into the encoder's planes; everything else through the generic reader.
-      if (auto packed = imageio::read_packed_if_native(input)) return codec::to_source_image(std::move(*packed), input);
-      const cli::QuietStderr quiet_libraries;
-      return codec::to_source_image(imageio::read_image(input), input);
-    }();
-    const double read_ms = since(t0);
-    // Byte targets depend on the image: bits per pixel over all components (Kakadu's --rate),
-    // OpenJPEG's ratios of the raw size, JasPer's fractions of it.
-    const double pixels = static_cast<double>(image.width) * image.height;
-    double raw_bytes = 0;
-    for (const auto& c : image.components) raw_bytes += pixels * c.precision / 8.0;
-    auto add_bytes = [&](double bytes) { params.layers.push_back({codec::LayerTarget::Kind::Bytes, std::floor(bytes)}); };
-    if (!rate.empty())
-      for (double bpp : parse_numbers(rate, "--rate")) add_bytes(bpp * pixels / 8.0);
-    if (!ratio.empty()) {
-      auto ratios = parse_numbers(ratio, "--ratio");
-      std::sort(ratios.begin(), ratios.end(), std::greater<>());  // largest ratio = smallest layer first
-      for (double r : ratios) add_bytes(raw_bytes / r);
-    }
-    for (double r : jo.rates) add_bytes(r * raw_bytes);
-    if (size > 0) add_bytes(size);
-    if (!psnr.empty())
-      for (double db : parse_numbers(psnr, "--psnr")) params.layers.push_back({codec::LayerTarget::Kind::Psnr, db});
-    codec::validate(params);
-
-    codec::EncodeReport report;
+    gpuj2k::EncodeReport report;
     std::vector<std::uint8_t> bytes;
     {
-      ProgressBar bar(!quiet && ::isatty(2));
-      params.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
-      bytes = codec::encode(std::move(image), params, format, &report);
+      // Third-party libraries (libpng inside OpenImageIO, Mesa) keep their own lines off stderr;
+      // the progress bar writes to the real one.
+      const bool show_progress = !quiet && ::isatty(2);
+      const cli::QuietStderr quiet_libraries;
+      ProgressBar bar(show_progress, quiet_libraries.real_stderr());
+      if (show_progress)
+        options.progress = [&bar](std::size_t done, std::size_t total) {
+          bar.update(done, total);
+          return true;
+        };
+      bytes = gpuj2k::encode_file(input, options, &report);
     }
     if (!quiet)
       for (const auto& notice : report.notices) std::fprintf(stderr, "j2kenc: note: %s\n", notice.c_str());
@@ -328,11 +315,11 @@ int main(int argc, char** argv) {
     imageio::write_bytes_atomically(output, bytes);
     const double output_ms = since(write_start);
     const double ms = since(t0);
-    if (!timing.empty()) print_timing(timing, report, read_ms, output_ms, ms);
+    if (!timing.empty()) print_timing(timing, report, output_ms, ms);
     if (!quiet)
-      std::fprintf(stderr, "j2kenc: %s -> %s: %dx%d, %zu components, %zu bytes (%.4f bpp), %.1f ms, DWT on %s (%s)\n",
-                   input.c_str(), output.c_str(), image.width, image.height, image.components.size(), bytes.size(),
-                   8.0 * static_cast<double>(bytes.size()) / (static_cast<double>(image.width) * image.height), ms,
+      std::fprintf(stderr, "j2kenc: %s -> %s: %dx%d, %d components, %zu bytes (%.4f bpp), %.1f ms, DWT on %s (%s)\n",
+                   input.c_str(), output.c_str(), report.width, report.height, report.components, bytes.size(),
+                   8.0 * static_cast<double>(bytes.size()) / (static_cast<double>(report.width) * report.height), ms,
                    report.dwt_backend.c_str(), report.dwt_reason.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "j2kenc: %s\n", cli::one_line(e.what()).c_str());

@@ -11,6 +11,8 @@ class QuietStderr {
   ~QuietStderr();
   QuietStderr(const QuietStderr&) = delete;
   QuietStderr& operator=(const QuietStderr&) = delete;
+  // The descriptor stderr had before: where the program's own output can still go meanwhile.
+  int real_stderr() const { return saved_ >= 0 ? saved_ : 2; }
 
  private:
   int saved_ = -1;

@@ -21,6 +21,7 @@ PACKAGES=(
   libopenjp2-tools grokj2k-tools  # reference decoders the codec's output is checked against
   openjph-tools                 # ojph_compress, the HTJ2K reference in bench/speed (and its smoke test)
   python3 python3-matplotlib    # bench/table41, bench/psnr and Figure 4.13
+  python3-dev pybind11-dev python3-numpy  # the Python bindings (python/) and their tests
 )
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update

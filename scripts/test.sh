@@ -3,6 +3,7 @@
 # Release build and under AddressSanitizer + UndefinedBehaviorSanitizer. GPU tests run on whatever
 # the GL layer finds (Mesa llvmpipe on machines without a GPU): they are never skipped for that.
 # Test programs run side by side (ctest -j): many wait on outside decoders, and no test times itself.
+# Then the codec is built alone and installed, and examples/ is built against it (check_codec_alone.sh).
 # Last, every file reader is fuzzed for FUZZ_SECONDS (default 30) each (scripts/fuzz.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -10,6 +11,10 @@ bash scripts/setup.sh
 
 bash scripts/build.sh build
 (cd build && ctest --output-on-failure --timeout 900 -j "$(nproc)")
+
+# The codec alone, as a library user gets it: built without the performer (nothing GPL looked for or
+# linked), installed into a prefix, and examples/ built against the installed package and run.
+bash scripts/check_codec_alone.sh
 
 bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGPUJ2K_SANITIZE=ON
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"

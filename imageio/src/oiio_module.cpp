@@ -40,10 +40,25 @@ std::string program_directory() {
   return slash == std::string::npos ? std::string() : program.substr(0, slash + 1);
 }
 
+// The folder of the library or program this code is linked into (libgpuj2k.so, installed beside
+// the module in lib/, or a program in the build's bin/).
+std::string own_directory() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&own_directory), &info) == 0 || info.dli_fname == nullptr) return {};
+  const std::string file = info.dli_fname;
+  const std::size_t slash = file.rfind('/');
+  return slash == std::string::npos ? std::string() : file.substr(0, slash + 1);
+}
+
 std::vector<std::string> candidates() {
   if (const char* forced = std::getenv("GPUJ2K_OIIO_MODULE"); forced != nullptr && *forced != '\0') return {forced};
   std::vector<std::string> list;
-  if (const std::string dir = program_directory(); !dir.empty()) list.push_back(dir + GPUJ2K_OIIO_MODULE_FILE);
+  if (const std::string dir = program_directory(); !dir.empty()) {
+    list.push_back(dir + GPUJ2K_OIIO_MODULE_FILE);
+    list.push_back(dir + "../" GPUJ2K_INSTALL_LIBDIR "/" GPUJ2K_OIIO_MODULE_FILE);  // an installed program
+  }
+  if (const std::string dir = own_directory(); !dir.empty() && dir != program_directory())
+    list.push_back(dir + GPUJ2K_OIIO_MODULE_FILE);
   list.push_back(GPUJ2K_OIIO_MODULE_FILE);  // LD_LIBRARY_PATH and the system's directories
   return list;
 }

@@ -6,13 +6,18 @@
 #include <sstream>
 #include <string>
 
-#include <glm/vec3.hpp>
-
 #include "dwt/error.h"
 #include "imageio/atomic_write.h"
+#include "wavelet_apps/error.h"
+
+// The performer's procedural head (the built-in control net) and mesh writers, when it is built
+// (GPUJ2K_BUILD_PERFORMER): see CMakeLists.txt.
+#ifdef GPUJ2K_WAVELET_APPS_WITH_PERFORMER
+#include <glm/vec3.hpp>
+
 #include "performer/mesh_io.h"
 #include "performer/procedural_head.h"
-#include "wavelet_apps/error.h"
+#endif
 
 namespace wavelet_apps {
 
@@ -119,7 +124,9 @@ ControlNet read_ply_net(const std::filesystem::path& path, std::istream& in) {
   return net;
 }
 
+#ifdef GPUJ2K_WAVELET_APPS_WITH_PERFORMER
 glm::vec3 to_glm(const Point3& p) { return {p[0], p[1], p[2]}; }
+#endif
 
 // One output sample of an axis as weights on net indices.
 struct Tap {
@@ -304,6 +311,7 @@ std::string mesh_problem(const SurfaceMesh& mesh) {
   return {};
 }
 
+#ifdef GPUJ2K_WAVELET_APPS_WITH_PERFORMER
 void write_mesh(const std::filesystem::path& path, const SurfaceMesh& mesh) {
   std::vector<glm::vec3> positions;
   positions.reserve(mesh.positions.size());
@@ -338,5 +346,14 @@ ControlNet head_control_net(int rings, int segments) {
     }
   return net;
 }
+#else
+void write_mesh(const std::filesystem::path& path, const SurfaceMesh&) {
+  throw AppError(path.string() + ": writing surface meshes needs the performer's mesh writers (configure with GPUJ2K_BUILD_PERFORMER=ON)");
+}
+
+ControlNet head_control_net(int, int) {
+  throw AppError("the built-in head is the performer's procedural head (configure with GPUJ2K_BUILD_PERFORMER=ON)");
+}
+#endif
 
 }  // namespace wavelet_apps

@@ -1,0 +1,146 @@
+#pragma once
+// gpuj2k: JPEG 2000 Part 1 encoding, the library's public interface. Everything a program needs is
+// in this header; nothing else under the project's folders is public.
+//
+//   #include <gpuj2k/encoder.h>
+//
+//   gpuj2k::ImageView image;  // 8-bit RGB, rows one after another
+//   image.data = pixels.data();
+//   image.size_bytes = pixels.size();
+//   image.width = 640; image.height = 480; image.components = 3;
+//   gpuj2k::EncodeOptions options;
+//   options.rates_bpp = {0.75};
+//   std::vector<std::uint8_t> j2k = gpuj2k::encode(image, options);
+//
+// Every failure throws gpuj2k::Error, whose message is one line that names the parameter or file
+// and the problem. Encodes are independent: several may run at once on different threads (each
+// with its own worker threads and, where the GPU is used, its own GL context).
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#if defined(_WIN32)
+#define GPUJ2K_API
+#else
+#define GPUJ2K_API __attribute__((visibility("default")))
+#endif
+
+namespace gpuj2k {
+
+// The library's one error type: invalid arguments, unreadable or unwritable files, images the
+// standard cannot code, cancellation.
+class GPUJ2K_API Error : public std::runtime_error {
+ public:
+  explicit Error(const std::string& what) : std::runtime_error(what) {}
+};
+
+// How the caller's samples are stored.
+enum class SampleType {
+  UInt8,   // unsigned, 1..8 significant bits
+  UInt16,  // unsigned, 1..16 significant bits (native byte order)
+  Int16,   // signed, 1..16 significant bits (native byte order)
+  Int32,   // signed or unsigned (ImageView::is_signed), 1..16 significant bits
+};
+
+enum class Layout {
+  Interleaved,  // the components of a pixel side by side, pixels in rows
+  Planar,       // each component a plane of rows, planes one after another
+};
+
+// An image in the caller's memory. Nothing is copied until the encode reads it, and nothing beyond
+// `size_bytes` is ever read: a buffer too small for the layout is an Error.
+struct ImageView {
+  const void* data = nullptr;
+  std::size_t size_bytes = 0;  // length of the buffer at `data`
+  int width = 0, height = 0;
+  int components = 1;          // 1..16384
+  SampleType type = SampleType::UInt8;
+  int bits = 0;                // significant bits per sample; 0: 8 for UInt8, 16 otherwise
+  bool is_signed = false;      // Int32 only (UInt8/UInt16 are unsigned, Int16 is signed)
+  Layout layout = Layout::Interleaved;
+  std::size_t row_stride = 0;    // bytes from one row to the next (of one plane when planar); 0: tight
+  std::size_t plane_stride = 0;  // planar: bytes from one plane to the next; 0: height * row stride
+};
+
+enum class Format { Codestream, Jp2 };  // a raw .j2k/.j2c codestream, or a .jp2 file
+enum class Progression { LRCP, RLCP, RPCL, PCRL, CPRL };
+enum class DwtDevice {
+  Auto,  // a hardware GPU where it is faster for the image size, never a software renderer
+  Cpu,
+  Gpu,   // fails if no GL context can be made
+};
+
+// Code-block mode switches (T.800 Table A.19).
+struct CodeBlockModes {
+  bool bypass = false;                   // raw coding of the lower bit-planes' first two passes
+  bool reset = false;                    // contexts reset after each pass
+  bool terminate_each_pass = false;
+  bool vertically_causal = false;
+  bool predictable_termination = false;
+  bool segmentation_symbols = false;
+};
+
+struct EncodeOptions {
+  Format format = Format::Codestream;
+  // Reversible 5/3 wavelet and colour transform, every bit kept. Otherwise the irreversible 9/7.
+  bool lossless = false;
+  // Lossy targets, at most one kind; one value per quality layer, increasing quality. None: one
+  // layer of everything the quantisation keeps.
+  std::vector<double> rates_bpp;   // bits per pixel over all components
+  std::vector<double> ratios;      // compression ratios of the raw size (as opj_compress -r)
+  std::vector<double> psnr_db;     // PSNR over all components
+  double size_bytes = 0;           // one layer, the whole file at most this size
+  double base_step = 1.0 / 2048;   // lossy quantisation step, relative to the sample range
+  int levels = 5;                  // decomposition levels, 0..32
+  std::int64_t tile_width = 0, tile_height = 0;    // 0: one tile
+  std::int64_t tile_x0 = 0, tile_y0 = 0;           // tile grid origin on the reference grid
+  std::int64_t image_x0 = 0, image_y0 = 0;         // image origin on the reference grid
+  int codeblock_width = 64, codeblock_height = 64; // powers of two 4..1024, product <= 4096
+  std::vector<std::pair<int, int>> precincts;      // finest resolution first; empty: maximal
+  Progression progression = Progression::LRCP;
+  bool sop = false, eph = false;
+  CodeBlockModes modes;
+  int guard_bits = -1;             // -1: 2 lossless, 1 lossy
+  std::string comment = "Created by gpuj2k";
+  int threads = 0;                 // worker threads for this encode; 0: one per hardware thread
+  DwtDevice dwt = DwtDevice::Auto;
+  bool code_every_pass = false;    // with a target: no pass skipping (the same file, slower)
+  // Called from worker threads as code-blocks finish (must be thread-safe): blocks done and the
+  // total. Returning false cancels the encode, which then throws Error("encode cancelled").
+  std::function<bool(std::size_t done, std::size_t total)> progress;
+};
+
+// What an encode reports besides its bytes.
+struct EncodeReport {
+  int width = 0, height = 0, components = 0;
+  int threads = 0;
+  std::string dwt_backend;  // where the DWT ran, with the GL renderer for the GPU
+  std::string dwt_reason;   // why there
+  std::vector<std::string> notices;
+  // Milliseconds per stage.
+  double read_ms = 0, setup_ms = 0, gl_context_ms = 0, shader_compile_ms = 0, level_shift_ms = 0, upload_ms = 0,
+         dwt_ms = 0, download_ms = 0, tier1_ms = 0, rate_control_ms = 0, tier2_ms = 0;
+  std::size_t recoded_blocks = 0;  // pass skipping: blocks coded again after the allocation
+};
+
+// Encodes an image from memory.
+GPUJ2K_API std::vector<std::uint8_t> encode(const ImageView& image, const EncodeOptions& options,
+                                            EncodeReport* report = nullptr);
+
+// Encodes an image file: PNM (read without conversion), PFM is refused (float samples), anything
+// else through OpenImageIO (PNG, TIFF, BMP, JPEG, ...), keeping its precision.
+GPUJ2K_API std::vector<std::uint8_t> encode_file(const std::string& input_path, const EncodeOptions& options,
+                                                 EncodeReport* report = nullptr);
+
+// The same, written to `output_path` atomically (no file at all on failure).
+GPUJ2K_API void encode_file(const std::string& input_path, const std::string& output_path,
+                            const EncodeOptions& options, EncodeReport* report = nullptr);
+
+// The library's version, "MAJOR.MINOR.PATCH".
+GPUJ2K_API std::string version();
+
+}  // namespace gpuj2k

@@ -1,0 +1,269 @@
+#include "gpuj2k/encoder.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <new>
+
+#include "codec/encoder/encoder.h"
+#include "codec/structure/error.h"
+#include "imageio/atomic_write.h"
+#include "imageio/error.h"
+#include "imageio/read.h"
+
+#ifndef GPUJ2K_VERSION
+#define GPUJ2K_VERSION "0.0.0"
+#endif
+
+namespace gpuj2k {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+// Thrown from the progress callback (on a worker thread) when the caller cancels; the thread pool
+// carries it back to the encode's caller, which turns it into Error.
+struct Cancelled {};
+
+std::size_t sample_bytes(SampleType type) {
+  switch (type) {
+    case SampleType::UInt8: return 1;
+    case SampleType::UInt16:
+    case SampleType::Int16: return 2;
+    case SampleType::Int32: return 4;
+  }
+  throw Error("unknown sample type");
+}
+
+// a * b, or an Error naming `what` when it does not fit in size_t.
+std::size_t checked_product(std::size_t a, std::size_t b, const char* what) {
+  if (a != 0 && b > std::numeric_limits<std::size_t>::max() / a) throw Error(std::string(what) + " overflows the address space");
+  return a * b;
+}
+
+// The image's samples as the codec takes them: one integer plane per component, every value
+// checked against the declared bits (a sample out of range is an error, not silently clipped).
+codec::SourceImage to_source(const ImageView& v) {
+  if (v.data == nullptr) throw Error("image data is null");
+  if (v.width <= 0 || v.height <= 0)
+    throw Error("image size " + std::to_string(v.width) + "x" + std::to_string(v.height) + " is empty or negative");
+  if (v.components < 1 || v.components > 16384)
+    throw Error("component count " + std::to_string(v.components) + " is outside 1..16384");
+  const std::size_t bytes = sample_bytes(v.type);
+  const int max_bits = v.type == SampleType::UInt8 ? 8 : 16;
+  const int bits = v.bits == 0 ? max_bits : v.bits;
+  if (bits < 1 || bits > max_bits)
+    throw Error("bits per sample " + std::to_string(v.bits) + " is outside 1.." + std::to_string(max_bits) +
+                " for this sample type");
+  const bool is_signed = v.type == SampleType::Int16 || (v.type == SampleType::Int32 && v.is_signed);
+  const auto w = static_cast<std::size_t>(v.width), h = static_cast<std::size_t>(v.height),
+             nc = static_cast<std::size_t>(v.components);
+  const bool planar = v.layout == Layout::Planar;
+  const std::size_t pixel_step = planar ? bytes : checked_product(bytes, nc, "a pixel's size");
+  const std::size_t tight_row = checked_product(pixel_step, w, "a row's size");
+  const std::size_t row_stride = v.row_stride == 0 ? tight_row : v.row_stride;
+  if (row_stride < tight_row)
+    throw Error("row stride " + std::to_string(row_stride) + " is smaller than a row (" + std::to_string(tight_row) + " bytes)");
+  const std::size_t plane_bytes = checked_product(row_stride, h - 1, "the image's size") + tight_row;
+  const std::size_t plane_stride = !planar ? 0 : v.plane_stride == 0 ? checked_product(row_stride, h, "a plane's size") : v.plane_stride;
+  if (planar && plane_stride < plane_bytes)
+    throw Error("plane stride " + std::to_string(plane_stride) + " is smaller than a plane (" + std::to_string(plane_bytes) + " bytes)");
+  const std::size_t needed = planar ? checked_product(plane_stride, nc - 1, "the image's size") + plane_bytes : plane_bytes;
+  if (v.size_bytes < needed)
+    throw Error("image buffer of " + std::to_string(v.size_bytes) + " bytes is smaller than the " + std::to_string(needed) +
+                " bytes a " + std::to_string(v.width) + "x" + std::to_string(v.height) + " image of " +
+                std::to_string(v.components) + " components needs");
+  const std::int64_t lo = is_signed ? -(std::int64_t{1} << (bits - 1)) : 0;
+  const std::int64_t hi = is_signed ? (std::int64_t{1} << (bits - 1)) - 1 : (std::int64_t{1} << bits) - 1;
+
+  codec::SourceImage out;
+  out.width = v.width;
+  out.height = v.height;
+  const auto* base = static_cast<const std::uint8_t*>(v.data);
+  for (std::size_t c = 0; c < nc; ++c) {
+    codec::SourceComponent comp;
+    comp.precision = bits;
+    comp.is_signed = is_signed;
+    imageio::resize_with_huge_pages(comp.samples, w * h);
+    for (std::size_t y = 0; y < h; ++y) {
+      const std::uint8_t* row = base + (planar ? c * plane_stride : c * bytes) + y * row_stride;
+      std::int32_t* dst = comp.samples.data() + y * w;
+      for (std::size_t x = 0; x < w; ++x) {
+        const std::uint8_t* s = row + x * pixel_step;
+        std::int64_t value = 0;
+        switch (v.type) {
+          case SampleType::UInt8: value = *s; break;
+          case SampleType::UInt16: { std::uint16_t u; std::memcpy(&u, s, 2); value = u; break; }
+          case SampleType::Int16: { std::int16_t i; std::memcpy(&i, s, 2); value = i; break; }
+          case SampleType::Int32: { std::int32_t i; std::memcpy(&i, s, 4); value = i; break; }
+        }
+        if (value < lo || value > hi)
+          throw Error("sample " + std::to_string(value) + " of component " + std::to_string(c) + " at (" +
+                      std::to_string(x) + ", " + std::to_string(y) + ") does not fit " + std::to_string(bits) + "-bit " +
+                      (is_signed ? "signed" : "unsigned") + " samples");
+        dst[x] = static_cast<std::int32_t>(value);
+      }
+    }
+    out.components.push_back(std::move(comp));
+  }
+  return out;
+}
+
+void require_positive(const std::vector<double>& values, const char* what) {
+  for (double v : values)
+    if (!(v > 0) || !std::isfinite(v)) throw Error(std::string(what) + " must be positive numbers, got " + std::to_string(v));
+}
+
+static_assert(static_cast<int>(Progression::LRCP) == static_cast<int>(codec::Progression::LRCP) &&
+              static_cast<int>(Progression::RLCP) == static_cast<int>(codec::Progression::RLCP) &&
+              static_cast<int>(Progression::RPCL) == static_cast<int>(codec::Progression::RPCL) &&
+              static_cast<int>(Progression::PCRL) == static_cast<int>(codec::Progression::PCRL) &&
+              static_cast<int>(Progression::CPRL) == static_cast<int>(codec::Progression::CPRL),
+              "the public progression orders are the codec's");
+
+// The codec's parameters but the targets, which need the image; checked.
+codec::EncodeParams base_params(const EncodeOptions& o) {
+  const int kinds = !o.rates_bpp.empty() + !o.ratios.empty() + !o.psnr_db.empty() + (o.size_bytes > 0);
+  if (kinds > 1) throw Error("give one kind of target: rates, ratios, PSNR or a size");
+  if (o.size_bytes < 0 || !std::isfinite(o.size_bytes)) throw Error("the size target must be positive");
+  if (o.lossless && kinds > 0) throw Error("rate and quality targets need lossy coding (lossless is set)");
+  require_positive(o.rates_bpp, "rates");
+  require_positive(o.ratios, "ratios");
+  require_positive(o.psnr_db, "PSNR targets");
+  codec::EncodeParams p;
+  p.lossless = o.lossless;
+  p.base_step = o.base_step;
+  p.levels = o.levels;
+  p.image_x0 = o.image_x0;
+  p.image_y0 = o.image_y0;
+  p.tile_width = o.tile_width;
+  p.tile_height = o.tile_height;
+  p.tile_x0 = o.tile_x0;
+  p.tile_y0 = o.tile_y0;
+  p.codeblock_width = o.codeblock_width;
+  p.codeblock_height = o.codeblock_height;
+  p.precincts = o.precincts;
+  p.order = static_cast<codec::Progression>(static_cast<int>(o.progression));
+  p.sop = o.sop;
+  p.eph = o.eph;
+  p.block_style.bypass = o.modes.bypass;
+  p.block_style.reset = o.modes.reset;
+  p.block_style.terminate_each_pass = o.modes.terminate_each_pass;
+  p.block_style.vertically_causal = o.modes.vertically_causal;
+  p.block_style.predictable_termination = o.modes.predictable_termination;
+  p.block_style.segmentation_symbols = o.modes.segmentation_symbols;
+  p.guard_bits = o.guard_bits;
+  p.comment = o.comment;
+  p.threads = o.threads;
+  p.skip_passes = !o.code_every_pass;
+  p.dwt = o.dwt == DwtDevice::Cpu ? codec::DwtDevice::Cpu : o.dwt == DwtDevice::Gpu ? codec::DwtDevice::Gpu : codec::DwtDevice::Auto;
+  if (o.progress) {
+    auto callback = o.progress;
+    p.progress = [callback](std::size_t done, std::size_t total) {
+      if (!callback(done, total)) throw Cancelled{};
+    };
+  }
+  codec::validate(p);
+  return p;
+}
+
+// The whole parameters for one image: byte targets follow from the image's size (bits per pixel
+// over all components, as Kakadu's --rate; ratios of the raw size, as OpenJPEG's -r).
+codec::EncodeParams to_params(const EncodeOptions& o, const codec::SourceImage& image) {
+  codec::EncodeParams p = base_params(o);
+  const double pixels = static_cast<double>(image.width) * image.height;
+  double raw_bytes = 0;
+  for (const codec::SourceComponent& c : image.components) raw_bytes += pixels * c.precision / 8.0;
+  auto add_bytes = [&](double bytes) { p.layers.push_back({codec::LayerTarget::Kind::Bytes, std::floor(bytes)}); };
+  for (double bpp : o.rates_bpp) add_bytes(bpp * pixels / 8.0);
+  std::vector<double> ratios = o.ratios;
+  std::sort(ratios.begin(), ratios.end(), std::greater<>());  // largest ratio = smallest layer first
+  for (double r : ratios) add_bytes(raw_bytes / r);
+  if (o.size_bytes > 0) add_bytes(o.size_bytes);
+  for (double db : o.psnr_db) p.layers.push_back({codec::LayerTarget::Kind::Psnr, db});
+  codec::validate(p);
+  return p;
+}
+
+void fill_report(const codec::EncodeReport& r, const codec::SourceImage& image, double read_ms, EncodeReport& out) {
+  out.width = image.width;
+  out.height = image.height;
+  out.components = static_cast<int>(image.components.size());
+  out.threads = r.threads;
+  out.dwt_backend = r.dwt_backend;
+  out.dwt_reason = r.dwt_reason;
+  out.notices = r.notices;
+  out.read_ms = read_ms;
+  out.setup_ms = r.times.setup;
+  out.gl_context_ms = r.times.gl_context;
+  out.shader_compile_ms = r.times.shader_compile;
+  out.level_shift_ms = r.times.level_shift;
+  out.upload_ms = r.times.upload;
+  out.dwt_ms = r.times.dwt;
+  out.download_ms = r.times.download;
+  out.tier1_ms = r.times.tier1;
+  out.rate_control_ms = r.times.rate_control;
+  out.tier2_ms = r.times.tier2;
+  out.recoded_blocks = r.recoded_blocks;
+}
+
+// Runs `work`, turning every failure into Error (one line, the cause's own message).
+template <class Work>
+auto guarded(Work&& work) -> decltype(work()) {
+  try {
+    return work();
+  } catch (const Error&) {
+    throw;
+  } catch (const Cancelled&) {
+    throw Error("encode cancelled");
+  } catch (const std::bad_alloc&) {
+    throw Error("out of memory");
+  } catch (const std::exception& e) {
+    throw Error(e.what());
+  }
+}
+
+std::vector<std::uint8_t> encode_source(codec::SourceImage&& image, const EncodeOptions& options, double read_ms,
+                                        EncodeReport* report) {
+  const codec::EncodeParams params = to_params(options, image);
+  codec::EncodeReport codec_report;
+  // Given up: the encoder may reuse or release the samples (it keeps the size and components).
+  std::vector<std::uint8_t> bytes =
+      codec::encode(std::move(image), params,
+                    options.format == Format::Jp2 ? codec::FileFormat::Jp2 : codec::FileFormat::Codestream, &codec_report);
+  if (report) fill_report(codec_report, image, read_ms, *report);
+  return bytes;
+}
+
+codec::SourceImage read_source(const std::string& path) {
+  if (auto packed = imageio::read_packed_if_native(path)) return codec::to_source_image(std::move(*packed), path);
+  return codec::to_source_image(imageio::read_image(path), path);
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode(const ImageView& image, const EncodeOptions& options, EncodeReport* report) {
+  return guarded([&] { return encode_source(to_source(image), options, 0, report); });
+}
+
+std::vector<std::uint8_t> encode_file(const std::string& input_path, const EncodeOptions& options, EncodeReport* report) {
+  return guarded([&] {
+    base_params(options);  // option errors should not wait for a large image to be read
+    const auto start = Clock::now();
+    codec::SourceImage image = read_source(input_path);
+    return encode_source(std::move(image), options, ms_since(start), report);
+  });
+}
+
+void encode_file(const std::string& input_path, const std::string& output_path, const EncodeOptions& options,
+                 EncodeReport* report) {
+  const std::vector<std::uint8_t> bytes = encode_file(input_path, options, report);
+  guarded([&] { imageio::write_bytes_atomically(output_path, bytes); });
+}
+
+std::string version() { return GPUJ2K_VERSION; }
+
+}  // namespace gpuj2k
