@@ -1,4 +1,4 @@
-#include "codec/encoder/component_transform.h"
+#include "component_transform.h"
 
 namespace codec {
 

@@ -1,4 +1,4 @@
-#include "codec/encoder/quantization.h"
+#include "quantization.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "codec/encoder/rate_control.h"
+#include "rate_control.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-#include "codec/encoder/reconstruction.h"
+#include "reconstruction.h"
 #include "codec/rate/hull.h"
 #include "codec/rate/rate_allocator.h"
 #include "codec/structure/error.h"

@@ -1,9 +1,9 @@
-#include "codec/encoder/reconstruction.h"
+#include "reconstruction.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "codec/encoder/quantization.h"
+#include "quantization.h"
 #include "codec/t1/reconstruction.h"
 
 namespace codec {

@@ -1,4 +1,4 @@
-#include "codec/encoder/tile_coder.h"
+#include "tile_coder.h"
 
 #include <algorithm>
 #include <atomic>
@@ -10,9 +10,9 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
-#include "codec/encoder/component_transform.h"
+#include "component_transform.h"
 #include "codec/encoder/encoder.h"
-#include "codec/encoder/quantization.h"
+#include "quantization.h"
 #include "codec/rate/hull.h"
 #include "codec/rate/selection.h"
 #include "codec/structure/error.h"

@@ -3,7 +3,7 @@
 
 #include "codec/encoder/params.h"
 #include "codec/encoder/source_image.h"
-#include "codec/encoder/tile_coder.h"
+#include "tile_coder.h"
 
 namespace codec {
 

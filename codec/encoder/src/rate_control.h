@@ -7,7 +7,7 @@
 #include "codec/encoder/encoder.h"
 #include "codec/encoder/params.h"
 #include "codec/encoder/source_image.h"
-#include "codec/encoder/tile_coder.h"
+#include "tile_coder.h"
 #include "dwt_cpu/thread_pool.h"
 
 namespace codec {
