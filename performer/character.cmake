@@ -4,4 +4,6 @@
 # paths are spelled from this file so it also works when included from elsewhere.
 target_sources(gpuj2k_performer PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/src/character.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/src/character_deform.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/src/character_deform.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/src/avatar.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/src/gltf_avatar_read.cpp)
