@@ -68,6 +68,13 @@ if [ -f "$bvh" ]; then
   "$bin/performer" render --bvh "$bvh" --frames 0:479 --lang en-us --text "Hello, I am your virtual performer. Watch me walk." \
     --effects "$effects" --size 640x480 -o "$work/performer.mp4"
   "$bin/performer" render --bvh "$bvh" --frames 0:239 --effects snow,toon --size 640x480 -o "$work/performer_toon_snow.mp4"
+  echo "== A glTF avatar through the same shader path: the generated performer written as a skinned glTF with morph"
+  echo "   targets, then rendered from another clip, its joints following the clip's by name, speech on its morph targets"
+  "$bin/performer" avatar --bvh "$bvh" -o "$work/performer_avatar.glb"
+  clip=../shared/assets/bvh/cmu_131_02.bvh
+  if [ ! -f "$clip" ]; then clip=$bvh; fi
+  "$bin/performer" render --bvh "$clip" --gltf "$work/performer_avatar.glb" --frames 0:239 --lang en-us \
+    --text "I am a glTF avatar." --effects "$effects" --size 640x480 -o "$work/performer_gltf_avatar.mp4"
 else
   echo "note: $bvh not found; skipping performer pose and render"
 fi

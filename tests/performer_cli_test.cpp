@@ -11,6 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "imageio/image.h"
+#include "imageio/read.h"
+
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -340,6 +343,126 @@ TEST(PerformerCli, RenderBadInputIsOneLineAndNoOutput) {
     expect_one_error_line(bad);
   }
   EXPECT_TRUE(fs::is_empty(dir.path())) << "no output file, no temporary";
+}
+
+// `performer render --gltf`: an avatar made by our own code (`performer avatar`: the generated
+// performer as a skinned glTF with morph targets) goes through the same deformer and renderer. The
+// video is what ffprobe expects, and a rendered frame of the avatar is the generated performer's
+// frame: the avatar is that performer in metres, its joints following the clip by name, and the
+// camera frames the figure whatever its units.
+fs::path cmu_bvh_or_empty() {
+  const char* root = std::getenv("GPUJ2K_SOURCE_DIR");
+  if (root == nullptr) return {};
+  const fs::path bvh = fs::path(root) / ".." / "shared" / "assets" / "bvh" / "cmu_131_01.bvh";
+  return fs::exists(bvh) ? bvh : fs::path();
+}
+
+TEST(PerformerCli, RenderGltfAvatarWritesVideoAndShowsTheAvatar) {
+  const fs::path bvh = cmu_bvh_or_empty();
+  if (bvh.empty()) GTEST_SKIP() << "GPUJ2K_SOURCE_DIR unset or ../shared/assets/bvh/cmu_131_01.bvh absent; skipping";
+  if (std::system("ffprobe -version > /dev/null 2>&1") != 0) GTEST_SKIP() << "ffprobe (Debian: ffmpeg) not installed";
+  const ScratchFolder dir("render_gltf");
+  const std::string avatar = (dir / "generated.glb").string();
+  const RunResult made = run_performer({"avatar", "--bvh", bvh.string(), "-o", avatar});
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  ASSERT_TRUE(fs::exists(avatar));
+
+  const RunResult r = run_performer({"render", "--gltf", avatar, "--bvh", bvh.string(), "--frames", "0:9", "--size",
+                                     "160x120", "--lang", "en-us", "--text", "Hi", "-o", (dir / "out.mp4").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("38 of 38 joints follow the clip by name"), std::string::npos) << r.err;
+  const std::size_t at = r.err.find(" frames written to ");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const int frames = std::stoi(r.err.substr(r.err.rfind(' ', at - 1) + 1));
+  EXPECT_EQ(frames, 3);  // 9 frames of a 120 fps clip at 30 fps
+  EXPECT_EQ(run_ffprobe(dir / "out.mp4", "codec_name,width,height,nb_frames", "v:0"),
+            "h264\n160\n120\n" + std::to_string(frames) + "\n");
+
+  // One frame as PNG, of the avatar and of the generated performer.
+  for (const char* which : {"avatar_frames", "generated_frames"}) {
+    std::vector<std::string> args = {"render", "--bvh", bvh.string(), "--frames", "300:300", "--size", "160x120",
+                                     "-o", (dir / which).string()};
+    if (std::string(which) == "avatar_frames") args.insert(args.end(), {"--gltf", avatar});
+    const RunResult png = run_performer(args);
+    ASSERT_EQ(png.exit_code, 0) << png.err;
+  }
+  const imageio::Image a = imageio::read_image((dir / "avatar_frames" / "frame_00000.png").string());
+  const imageio::Image g = imageio::read_image((dir / "generated_frames" / "frame_00000.png").string());
+  ASSERT_EQ(a.width, 160);
+  ASSERT_EQ(a.height, 120);
+  ASSERT_EQ(a.pixels.size(), g.pixels.size());
+  const float full = static_cast<float>((1 << a.bits_per_sample) - 1);
+  // The figure's cloth is a bluer blue than the sky's: more blue over red than anywhere in the
+  // frame's left and right fifths, which the figure, framed in the middle, leaves to sky and floor.
+  auto blueness = [&](int x, int y) { return (a.at(x, y, 2) - a.at(x, y, 0)) / full; };
+  float background = 0.0f;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x)
+      if (x < a.width / 5 || x >= a.width - a.width / 5) background = std::max(background, blueness(x, y));
+  std::size_t differ = 0, figure = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      float d = 0.0f;
+      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(a.at(x, y, c) - g.at(x, y, c)) / full);
+      differ += d > 0.1f;
+      figure += blueness(x, y) > background + 0.04f;
+    }
+  const std::size_t pixels = static_cast<std::size_t>(a.width * a.height);
+  std::printf("avatar frame: %zu of %zu pixels differ from the generated performer's, %zu show the cloth\n", differ,
+              pixels, figure);
+  EXPECT_LT(differ, pixels / 100);
+  EXPECT_GT(figure, pixels / 200);
+}
+
+// A minimal glTF (one triangle, embedded buffer) with neither a skin nor morph targets.
+const char* kBareGltf =
+    R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)"
+    R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],"bufferViews":[{"buffer":0,"byteLength":36}],)"
+    R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],)"
+    R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})";
+
+// The same triangle skinned to one joint, "Tail", which no motion capture skeleton has.
+const char* kTailGltf =
+    R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":108,"uri":"data:application/octet-stream;base64,)"
+    R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8A)"
+    R"(AAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAAAA"}],"bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,)"
+    R"("byteOffset":36,"byteLength":24},{"buffer":0,"byteOffset":60,"byteLength":48}],"accessors":[{"bufferView":0,)"
+    R"("componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},{"bufferView":1,"componentType":5123,)"
+    R"("count":3,"type":"VEC4"},{"bufferView":2,"componentType":5126,"count":3,"type":"VEC4"}],"meshes":[{"primitives":)"
+    R"([{"attributes":{"POSITION":0,"JOINTS_0":1,"WEIGHTS_0":2}}]}],"skins":[{"joints":[1]}],"nodes":[{"mesh":0,)"
+    R"("skin":0},{"name":"Tail"}],"scenes":[{"nodes":[0,1]}]})";
+
+TEST(PerformerCli, RenderGltfBadInputIsOneLineAndNoOutput) {
+  const fs::path bvh = cmu_bvh_or_empty();
+  if (bvh.empty()) GTEST_SKIP() << "GPUJ2K_SOURCE_DIR unset or ../shared/assets/bvh/cmu_131_01.bvh absent; skipping";
+  const ScratchFolder inputs("render_gltf_inputs");
+  std::ofstream(inputs / "corrupt.glb", std::ios::binary) << "glTF (magic bytes), then not a binary glTF at all";
+  std::ofstream(inputs / "bare.gltf") << kBareGltf;
+  std::ofstream(inputs / "tail.gltf") << kTailGltf;
+  const ScratchFolder dir("render_gltf_bad");
+  const std::string out = (dir / "out.mp4").string();
+  const struct {
+    fs::path avatar;
+    const char* says;
+  } cases[] = {
+      {inputs / "missing.glb", "cannot open file"},
+      {inputs / "corrupt.glb", "not a readable glTF 2.0 file"},
+      {inputs / "bare.gltf", "no skinned mesh and no morph targets"},
+      {inputs / "tail.gltf", "none of the avatar's joints (Tail)"},
+  };
+  for (const auto& c : cases) {
+    const RunResult bad =
+        run_performer({"render", "--bvh", bvh.string(), "--frames", "0:2", "--gltf", c.avatar.string(), "-o", out});
+    EXPECT_EQ(bad.exit_code, 1) << c.avatar << " " << bad.err;
+    expect_one_error_line(bad);
+    EXPECT_NE(bad.err.find(c.avatar.string()), std::string::npos) << "names the file: " << bad.err;
+    EXPECT_NE(bad.err.find(c.says), std::string::npos) << bad.err;
+  }
+  EXPECT_TRUE(fs::is_empty(dir.path())) << "no output file, no temporary";
+  const RunResult wrong = run_performer({"avatar", "--bvh", bvh.string(), "-o", (dir / "avatar.obj").string()});
+  EXPECT_EQ(wrong.exit_code, 1) << wrong.err;
+  expect_one_error_line(wrong);
+  EXPECT_TRUE(fs::is_empty(dir.path()));
 }
 
 }  // namespace

@@ -35,6 +35,10 @@
 #include "performer/weights_expression.h"
 #include "performer/weights_track.h"
 #include "performer/world_transforms.h"
+#include "performer/avatar.h"
+#include "performer/gltf_avatar.h"
+#include "support/avatar_fixture.h"
+#include "support/scratch_dir.h"
 #include "support/shared_assets.h"
 
 namespace fs = std::filesystem;
@@ -103,18 +107,13 @@ struct Agreement {
   float normal = 0.0f;    // largest distance between unit normals
 };
 
-// One frame both ways: `weights` per target, the clip's frame `f` (or the rest pose when f < 0).
-Agreement compare(const Cmu& m, GpuDeformer& gpu, std::span<const float> weights, int f) {
-  const Character& c = m.character;
-  const performer::Skeleton& sk = m.bvh.skeleton;
+// One frame both ways: `weights` per target, the joints' world transforms `world` (or the rest pose
+// when empty).
+Agreement compare_frame(const Character& c, GpuDeformer& gpu, std::span<const float> weights,
+                        std::span<const glm::mat4> world) {
   CharacterFrame frame(c);
   std::copy(weights.begin(), weights.end(), frame.weights.begin());
-  if (f >= 0) {
-    std::vector<glm::mat4> local(sk.joints.size()), world(sk.joints.size());
-    performer::local_transforms(sk, performer::frame_values(sk, m.bvh.motion, f), local);
-    performer::world_transforms(sk, local, world);
-    performer::skinning_matrices(world, c.inverse_bind, frame.matrices);
-  }
+  if (!world.empty()) performer::skinning_matrices(world, c.inverse_bind, frame.matrices);
   performer::deform_character_parallel(frame.job(c));
   gpu.deform(frame.weights, frame.matrices);
   std::vector<glm::vec3> p(c.vertex_count()), n(c.vertex_count());
@@ -126,6 +125,20 @@ Agreement compare(const Cmu& m, GpuDeformer& gpu, std::span<const float> weights
     a.normal = std::max(a.normal, glm::distance(n[v], frame.normals[v]));
   }
   return a;
+}
+
+// The clip's joints at frame f.
+std::vector<glm::mat4> clip_pose(const performer::Bvh& bvh, int f) {
+  const performer::Skeleton& sk = bvh.skeleton;
+  std::vector<glm::mat4> local(sk.joints.size()), world(sk.joints.size());
+  performer::local_transforms(sk, performer::frame_values(sk, bvh.motion, f), local);
+  performer::world_transforms(sk, local, world);
+  return world;
+}
+
+// One frame both ways: `weights` per target, the clip's frame `f` (or the rest pose when f < 0).
+Agreement compare(const Cmu& m, GpuDeformer& gpu, std::span<const float> weights, int f) {
+  return compare_frame(m.character, gpu, weights, f >= 0 ? clip_pose(m.bvh, f) : std::vector<glm::mat4>{});
 }
 
 class GpuDeformTest : public ::testing::TestWithParam<const char*> {};
@@ -194,42 +207,114 @@ TEST(GpuDeformer, RefusesWrongCountsAndTooManyActiveTargets) {
   EXPECT_THROW(gpu.read_back(p, n), std::invalid_argument);
 }
 
+// --- glTF avatars through the same shader path ------------------------------------------------------
+
+// A glTF avatar made by our own code for each clip (support/avatar_fixture.h: the generated performer
+// in metres, dressed as a foreign rig), read back as `performer render --gltf` reads it: its skin and
+// morph targets as a Character, its joints following the clip's by name.
+struct CmuAvatar {
+  performer::Bvh bvh;
+  performer::FaceModel face;
+  Character character;
+  performer::AvatarRetarget retarget;
+
+  std::vector<glm::mat4> pose(int f) const {
+    std::vector<glm::mat4> joints(character.inverse_bind.size());
+    performer::retarget_pose(retarget, clip_pose(bvh, f), joints);
+    return joints;
+  }
+};
+
+const CmuAvatar& cmu_avatar(const std::string& name) {
+  static std::map<std::string, std::unique_ptr<CmuAvatar>> cache;
+  auto& slot = cache[name];
+  if (!slot) {
+    slot = std::make_unique<CmuAvatar>();
+    slot->bvh = performer::read_bvh(test_support::bvh_asset(name));
+    const test_support::ScratchDir dir("gpu_avatar");
+    test_support::write_test_avatar(slot->bvh.skeleton, dir / "avatar.glb");
+    performer::GltfAvatar avatar = performer::load_gltf_avatar(dir / "avatar.glb", library().visemes());
+    slot->character = performer::avatar_character(avatar.skin, avatar.face);
+    slot->retarget = performer::retarget_by_name(avatar.skin, slot->bvh.skeleton);
+    slot->face = std::move(avatar.face);
+  }
+  return *slot;
+}
+
+class GltfAvatarGpuTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(GltfAvatarGpuTest, EqualsTheCpuWithSpeechDrivingTheMorphTargets) {
+  REQUIRE_SHARED_FILE(test_support::bvh_asset(GetParam()));
+  const CmuAvatar& m = cmu_avatar(GetParam());
+  ASSERT_FALSE(m.character.targets.empty());
+  EXPECT_EQ(m.retarget.unmatched, (std::vector<std::string>{"Prop"}));
+  GpuDeformer gpu(context(), m.character);
+  const performer::WeightTrack& track = speech_track();
+  const performer::ChannelBinding binding = performer::bind_channels(track, m.face);
+  std::vector<float> weights(m.character.targets.size());
+  const int frames = m.bvh.motion.frames;
+  int with_face = 0;
+  Agreement worst;
+  for (int k = 0; k < 6; ++k) {
+    const int f = k * (frames - 1) / 5;
+    const std::size_t t = static_cast<std::size_t>(k) * (track.frame_count() - 1) / 5;
+    performer::target_weights(binding, track.frame(t), weights);
+    with_face += std::any_of(weights.begin(), weights.end(), [](float w) { return w != 0.0f; });
+    const Agreement a = compare_frame(m.character, gpu, weights, m.pose(f));
+    EXPECT_LT(a.position, 1e-5f) << "frame " << f;
+    EXPECT_LT(a.normal, 1e-5f) << "frame " << f;
+    worst.position = std::max(worst.position, a.position);
+    worst.normal = std::max(worst.normal, a.normal);
+  }
+  EXPECT_GE(with_face, 3);  // the morph targets really were driven
+  std::printf("%s, glTF avatar (%zu vertices, %zu morph targets, bones in a %s): positions within %.2g of the size, "
+              "normals within %.2g\n",
+              GetParam(), m.character.vertex_count(), m.character.targets.size(), gpu.bone_storage().c_str(),
+              worst.position, worst.normal);
+}
+
+INSTANTIATE_TEST_SUITE_P(Cmu, GltfAvatarGpuTest, ::testing::Values("cmu_131_01.bvh", "cmu_131_02.bvh", "cmu_131_03.bvh"),
+                         [](const auto& info) { return std::string(info.param).substr(4, 6); });
+
 // --- Rendering (section 3.7) ----------------------------------------------------------------------
 
-// A rendered frame shows the character where it is: the pixels that differ from the same scene
-// without the character (moved far out of sight) against the CPU-deformed mesh's triangles
-// projected with the same camera and filled at pixel centres. Robust to rasteriser differences:
-// only the overlap of the two silhouettes is asked for.
-TEST(Renderer, FrameShowsTheCharacterWhereTheCpuMeshProjects) {
-  REQUIRE_SHARED_FILE(test_support::bvh_asset("cmu_131_01.bvh"));
-  const Cmu& m = cmu("cmu_131_01.bvh");
-  const Character& c = m.character;
-  const performer::Skeleton& sk = m.bvh.skeleton;
-  constexpr int kW = 200, kH = 150;
+// How well a rendered frame shows the character where it is: the pixels that differ from the same
+// scene without the character (moved far out of sight) against the CPU-deformed mesh's triangles
+// projected with the same camera and filled at pixel centres. Robust to rasteriser differences: only
+// the overlap of the two silhouettes (over their union) is measured. Also checks that rendering the
+// same frame twice gives the same bytes.
+struct Silhouettes {
+  double overlap = 0.0;
+  std::size_t projected = 0;  // pixels the CPU mesh covers
+};
+
+Silhouettes rendered_silhouettes(const Character& c, std::span<const glm::mat4> world, std::span<const float> weights,
+                                 int width, int height) {
   GpuDeformer gpu(context(), c);
   performer::render::RenderSettings settings;
-  settings.width = kW;
-  settings.height = kH;
+  settings.width = width;
+  settings.height = height;
   settings.effects = performer::render::parse_effects("none");
   performer::render::Renderer renderer(context(), c, settings);
 
   CharacterFrame frame(c);
-  std::vector<glm::mat4> local(sk.joints.size()), world(sk.joints.size());
-  performer::local_transforms(sk, performer::frame_values(sk, m.bvh.motion, 300), local);
-  performer::world_transforms(sk, local, world);
+  std::copy(weights.begin(), weights.end(), frame.weights.begin());
   performer::skinning_matrices(world, c.inverse_bind, frame.matrices);
   performer::deform_character_parallel(frame.job(c));
-  glm::vec3 lo(1e30f), hi(-1e30f);
+  glm::vec3 lo(1e30f), hi(-1e30f), centre(0.0f);
   for (const glm::vec3& p : frame.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  centre = 0.5f * (lo + hi);
+  const float aspect = float(width) / float(height);
   const performer::render::Camera camera =
-      performer::render::frame_figure(glm::vec3(world[0][3]), lo.y, hi.y - lo.y, glm::vec3(0, 0, 1), float(kW) / kH);
+      performer::render::frame_figure(centre, lo.y, hi.y - lo.y, glm::vec3(0, 0, 1), aspect);
 
-  std::vector<std::uint8_t> with(kW * kH * 3), without(kW * kH * 3);
+  const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  std::vector<std::uint8_t> with(pixels * 3), without(pixels * 3);
   gpu.deform(frame.weights, frame.matrices);
   renderer.render(gpu, camera, lo.y);
   renderer.read_rgb(with);
   // Deterministic: the same frame again gives the same bytes.
-  std::vector<std::uint8_t> again(kW * kH * 3);
+  std::vector<std::uint8_t> again(pixels * 3);
   renderer.render(gpu, camera, lo.y);
   renderer.read_rgb(again);
   EXPECT_EQ(again, with);
@@ -240,18 +325,18 @@ TEST(Renderer, FrameShowsTheCharacterWhereTheCpuMeshProjects) {
   renderer.read_rgb(without);
 
   // The CPU mesh's silhouette.
-  const glm::mat4 vp = camera.projection(float(kW) / kH) * camera.view();
-  std::vector<std::uint8_t> cpu(kW * kH, 0);
+  const glm::mat4 vp = camera.projection(aspect) * camera.view();
+  std::vector<std::uint8_t> cpu(pixels, 0);
   auto to_pixel = [&](const glm::vec3& p) {
     const glm::vec4 clip = vp * glm::vec4(p, 1.0f);
-    return glm::vec2((clip.x / clip.w * 0.5f + 0.5f) * kW, (0.5f - clip.y / clip.w * 0.5f) * kH);  // top row first
+    return glm::vec2((clip.x / clip.w * 0.5f + 0.5f) * width, (0.5f - clip.y / clip.w * 0.5f) * height);  // top row first
   };
   const auto& idx = c.mesh.indices;
   for (std::size_t t = 0; t < idx.size(); t += 3) {
     const glm::vec2 a = to_pixel(frame.positions[idx[t]]), b = to_pixel(frame.positions[idx[t + 1]]),
                     d = to_pixel(frame.positions[idx[t + 2]]);
-    const int x0 = std::max(0, int(std::floor(std::min({a.x, b.x, d.x})))), x1 = std::min(kW - 1, int(std::ceil(std::max({a.x, b.x, d.x}))));
-    const int y0 = std::max(0, int(std::floor(std::min({a.y, b.y, d.y})))), y1 = std::min(kH - 1, int(std::ceil(std::max({a.y, b.y, d.y}))));
+    const int x0 = std::max(0, int(std::floor(std::min({a.x, b.x, d.x})))), x1 = std::min(width - 1, int(std::ceil(std::max({a.x, b.x, d.x}))));
+    const int y0 = std::max(0, int(std::floor(std::min({a.y, b.y, d.y})))), y1 = std::min(height - 1, int(std::ceil(std::max({a.y, b.y, d.y}))));
     auto edge = [](glm::vec2 p, glm::vec2 q, glm::vec2 r) { return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x); };
     const float area = edge(a, b, d);
     if (area == 0.0f) continue;
@@ -259,23 +344,44 @@ TEST(Renderer, FrameShowsTheCharacterWhereTheCpuMeshProjects) {
       for (int x = x0; x <= x1; ++x) {
         const glm::vec2 q(x + 0.5f, y + 0.5f);
         const float w0 = edge(b, d, q) / area, w1 = edge(d, a, q) / area, w2 = edge(a, b, q) / area;
-        if (w0 >= 0 && w1 >= 0 && w2 >= 0) cpu[y * kW + x] = 1;
+        if (w0 >= 0 && w1 >= 0 && w2 >= 0) cpu[static_cast<std::size_t>(y * width + x)] = 1;
       }
   }
-  std::size_t both = 0, either = 0, shown = 0, projected = 0;
-  for (int i = 0; i < kW * kH; ++i) {
+  std::size_t both = 0, either = 0, shown = 0;
+  Silhouettes s;
+  for (std::size_t i = 0; i < pixels; ++i) {
     int difference = 0;
-    for (int k = 0; k < 3; ++k) difference = std::max(difference, std::abs(int(with[i * 3 + k]) - int(without[i * 3 + k])));
+    for (std::size_t k = 0; k < 3; ++k) difference = std::max(difference, std::abs(int(with[i * 3 + k]) - int(without[i * 3 + k])));
     const bool rendered = difference > 12;
     shown += rendered;
-    projected += cpu[i];
+    s.projected += cpu[i];
     both += rendered && cpu[i];
     either += rendered || cpu[i];
   }
-  const double overlap = double(both) / double(either);
-  std::printf("silhouette: %zu pixels rendered, %zu projected, overlap %.3f\n", shown, projected, overlap);
-  EXPECT_GT(projected, std::size_t(kW * kH / 50));  // the character is a good part of the frame
-  EXPECT_GT(overlap, 0.85);
+  s.overlap = either > 0 ? double(both) / double(either) : 0.0;
+  std::printf("silhouette: %zu pixels rendered, %zu projected, overlap %.3f\n", shown, s.projected, s.overlap);
+  return s;
+}
+
+TEST(Renderer, FrameShowsTheCharacterWhereTheCpuMeshProjects) {
+  REQUIRE_SHARED_FILE(test_support::bvh_asset("cmu_131_01.bvh"));
+  const Cmu& m = cmu("cmu_131_01.bvh");
+  constexpr int kW = 200, kH = 150;
+  const std::vector<float> neutral(m.character.targets.size(), 0.0f);
+  const Silhouettes s = rendered_silhouettes(m.character, clip_pose(m.bvh, 300), neutral, kW, kH);
+  EXPECT_GT(s.projected, std::size_t(kW * kH / 50));  // the character is a good part of the frame
+  EXPECT_GT(s.overlap, 0.85);
+}
+
+TEST(Renderer, FrameShowsTheGltfAvatarWhereTheCpuMeshProjects) {
+  REQUIRE_SHARED_FILE(test_support::bvh_asset("cmu_131_03.bvh"));
+  const CmuAvatar& m = cmu_avatar("cmu_131_03.bvh");
+  constexpr int kW = 200, kH = 150;
+  std::vector<float> weights(m.character.targets.size(), 0.0f);
+  weights[1] = 0.8f;  // a viseme opens the mouth
+  const Silhouettes s = rendered_silhouettes(m.character, m.pose(500), weights, kW, kH);
+  EXPECT_GT(s.projected, std::size_t(kW * kH / 50));
+  EXPECT_GT(s.overlap, 0.85);
 }
 
 // The environment sphere is the cube map: looking along each horizontal axis with a 90 degree

@@ -287,11 +287,11 @@ std::string join(const std::vector<std::string>& items, std::size_t limit) {
 
 }  // namespace
 
-GltfFace load_gltf_face(const std::filesystem::path& path, const VisemeSet& set, const MorphMapping& mapping,
-                        const GltfFaceOptions& options) {
-  const std::string file = path.string();
-  const tinygltf::Model model = detail::load_gltf_model(path);
-  const std::size_t mesh_index = find_mesh(model, options.mesh, file);
+namespace detail {
+
+GltfFace read_gltf_face(const tinygltf::Model& model, std::size_t mesh_index, const VisemeSet& set,
+                        const MorphMapping& mapping, const GltfFaceOptions& options, const std::string& file,
+                        bool allow_no_match) {
   const tinygltf::Mesh& mesh = model.meshes[mesh_index];
   GltfFace out;
   out.mesh = mesh.name.empty() ? "mesh " + std::to_string(mesh_index) : mesh.name;
@@ -342,6 +342,12 @@ GltfFace load_gltf_face(const std::filesystem::path& path, const VisemeSet& set,
     if (Resolved res = resolve_expression(r.target, names, mapping); !res.parts.empty()) take(r.target, res);
   }
 
+  if (!found_any && allow_no_match) {
+    out.model.targets.clear();
+    out.sources.clear();
+    validate_face_model(out.model, file);
+    return out;
+  }
   if (!found_any)
     throw GltfError(file, what + " has none of the morph targets the performer needs (visemes as viseme_* Oculus "
                                  "names or our names, expressions and blink as ARKit blend shapes or our names); "
@@ -350,6 +356,15 @@ GltfFace load_gltf_face(const std::filesystem::path& path, const VisemeSet& set,
     throw GltfError(file, what + " lacks morph targets for: " + join(out.missing, 40));
   validate_face_model(out.model, file);
   return out;
+}
+
+}  // namespace detail
+
+GltfFace load_gltf_face(const std::filesystem::path& path, const VisemeSet& set, const MorphMapping& mapping,
+                        const GltfFaceOptions& options) {
+  const std::string file = path.string();
+  const tinygltf::Model model = detail::load_gltf_model(path);
+  return detail::read_gltf_face(model, find_mesh(model, options.mesh, file), set, mapping, options, file);
 }
 
 GltfFace load_gltf_face(const std::filesystem::path& path, const VisemeSet& set, const GltfFaceOptions& options) {

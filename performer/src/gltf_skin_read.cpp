@@ -289,13 +289,15 @@ void read_mesh(const tinygltf::Model& model, int mesh_index, SkinnedMesh& out, c
 
 }  // namespace
 
-SkinnedMesh read_gltf_skinned(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  const tinygltf::Model model = detail::load_gltf_model(path);
-  int node_index = -1;
-  for (std::size_t n = 0; n < model.nodes.size() && node_index < 0; ++n)
-    if (model.nodes[n].mesh >= 0 && model.nodes[n].skin >= 0) node_index = static_cast<int>(n);
-  if (node_index < 0) throw GltfError(file, model.skins.empty() ? "no skin" : "no node has both a mesh and a skin");
+namespace detail {
+
+int first_skinned_node(const tinygltf::Model& model) {
+  for (std::size_t n = 0; n < model.nodes.size(); ++n)
+    if (model.nodes[n].mesh >= 0 && model.nodes[n].skin >= 0) return static_cast<int>(n);
+  return -1;
+}
+
+SkinnedMesh read_skinned_node(const tinygltf::Model& model, int node_index, const std::string& file) {
   const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(node_index)];
   if (static_cast<std::size_t>(node.mesh) >= model.meshes.size())
     throw GltfError(file, "node " + std::to_string(node_index) + " names mesh " + std::to_string(node.mesh) +
@@ -307,6 +309,16 @@ SkinnedMesh read_gltf_skinned(const std::filesystem::path& path) {
   read_skin(model, node.skin, out, file);
   read_mesh(model, node.mesh, out, file);
   return out;
+}
+
+}  // namespace detail
+
+SkinnedMesh read_gltf_skinned(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  const tinygltf::Model model = detail::load_gltf_model(path);
+  const int node_index = detail::first_skinned_node(model);
+  if (node_index < 0) throw GltfError(file, model.skins.empty() ? "no skin" : "no node has both a mesh and a skin");
+  return detail::read_skinned_node(model, node_index, file);
 }
 
 }  // namespace performer

@@ -1,7 +1,7 @@
 // glTF writer: lays the SkinnedMesh streams out in one buffer, builds the node tree and skin, and
 // lets tinygltf serialise it.
 #include <cstring>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -10,6 +10,7 @@
 
 #include <tiny_gltf.h>
 
+#include "atomic_file.h"
 #include "gltf_buffer_view.h"
 #include "performer/gltf_skin.h"
 
@@ -28,6 +29,26 @@ int add_accessor(tinygltf::Model& model, int view, int component_type, int type,
   return static_cast<int>(model.accessors.size() - 1);
 }
 
+// POSITION accessors, morph targets' included, must carry their bounds (glTF 2.0, 3.7.2.1).
+void set_bounds(tinygltf::Accessor& accessor, const std::vector<glm::vec3>& values) {
+  glm::vec3 lo(0.0f), hi(0.0f);
+  if (!values.empty()) lo = hi = values[0];
+  for (const glm::vec3& p : values) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  accessor.minValues = {lo.x, lo.y, lo.z};
+  accessor.maxValues = {hi.x, hi.y, hi.z};
+}
+
+int add_vec3_accessor(tinygltf::Model& model, const std::vector<glm::vec3>& values, bool bounds) {
+  const int view = detail::append_buffer_view(model, values.data(), values.size() * sizeof(glm::vec3),
+                                              TINYGLTF_TARGET_ARRAY_BUFFER);
+  const int accessor = add_accessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, values.size());
+  if (bounds) set_bounds(model.accessors[static_cast<std::size_t>(accessor)], values);
+  return accessor;
+}
+
 bool is_identity(const glm::mat4& m) { return m == glm::mat4(1.0f); }
 
 // TRS written only where it differs from the default, as exporters usually do.
@@ -41,12 +62,17 @@ void set_trs(tinygltf::Node& node, const SkinJoint& joint) {
 
 }  // namespace
 
-void write_gltf_skinned(const std::filesystem::path& path, const SkinnedMesh& skinned) {
+void write_gltf_skinned(const std::filesystem::path& path, const SkinnedMesh& skinned,
+                        std::span<const MorphTarget> morph_targets) {
   if (const std::string problem = skinned_mesh_problem(skinned); !problem.empty())
     throw std::invalid_argument("write_gltf_skinned: " + problem);
   const TriangleMesh& mesh = skinned.mesh;
   const std::size_t vertices = mesh.positions.size();
   const std::size_t joints = skinned.joints.size();
+  for (const MorphTarget& t : morph_targets)
+    if (t.position_deltas.size() != vertices || t.normal_deltas.size() != vertices)
+      throw std::invalid_argument("write_gltf_skinned: morph target '" + t.name + "' does not cover the " +
+                                  std::to_string(vertices) + " vertices");
 
   tinygltf::Model model;
   model.asset.version = "2.0";
@@ -55,25 +81,8 @@ void write_gltf_skinned(const std::filesystem::path& path, const SkinnedMesh& sk
 
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  {
-    const int view = detail::append_buffer_view(model, mesh.positions.data(), vertices * sizeof(glm::vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
-    const int accessor = add_accessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, vertices);
-    // POSITION must carry its bounds (glTF 2.0, 3.7.2.1).
-    glm::vec3 lo(0.0f), hi(0.0f);
-    if (vertices > 0) lo = hi = mesh.positions[0];
-    for (const glm::vec3& p : mesh.positions) {
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
-    }
-    model.accessors[static_cast<std::size_t>(accessor)].minValues = {lo.x, lo.y, lo.z};
-    model.accessors[static_cast<std::size_t>(accessor)].maxValues = {hi.x, hi.y, hi.z};
-    primitive.attributes["POSITION"] = accessor;
-  }
-  if (!mesh.normals.empty()) {
-    const int view = detail::append_buffer_view(model, mesh.normals.data(), vertices * sizeof(glm::vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
-    primitive.attributes["NORMAL"] =
-        add_accessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, vertices);
-  }
+  primitive.attributes["POSITION"] = add_vec3_accessor(model, mesh.positions, true);
+  if (!mesh.normals.empty()) primitive.attributes["NORMAL"] = add_vec3_accessor(model, mesh.normals, false);
   // Slots go out four per set; a set's unused slots get joint 0 and weight 0.
   const auto slots = static_cast<std::size_t>(skinned.influences);
   const std::size_t sets = (slots + 3) / 4;
@@ -100,8 +109,20 @@ void write_gltf_skinned(const std::filesystem::path& path, const SkinnedMesh& sk
     primitive.indices =
         add_accessor(model, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, mesh.indices.size());
   }
+  tinygltf::Value::Array target_names;
+  for (const MorphTarget& t : morph_targets) {
+    primitive.targets.push_back({{"POSITION", add_vec3_accessor(model, t.position_deltas, true)},
+                                 {"NORMAL", add_vec3_accessor(model, t.normal_deltas, false)}});
+    target_names.emplace_back(t.name);
+  }
   tinygltf::Mesh gltf_mesh;
   gltf_mesh.primitives.push_back(primitive);
+  if (!morph_targets.empty()) {
+    gltf_mesh.weights.assign(morph_targets.size(), 0.0);
+    tinygltf::Value::Object extras;
+    extras["targetNames"] = tinygltf::Value(std::move(target_names));
+    gltf_mesh.extras = tinygltf::Value(std::move(extras));
+  }
   model.meshes.push_back(gltf_mesh);
 
   tinygltf::Skin skin;
@@ -149,16 +170,23 @@ void write_gltf_skinned(const std::filesystem::path& path, const SkinnedMesh& sk
   model.scenes.push_back(scene);
   model.defaultScene = 0;
 
-  // Through a stream of our own: tinygltf's file writer does not report a file it failed to open.
-  // Its stream writer embeds the buffer (a data URI, or the BIN chunk of a .glb).
+  // Serialised in memory (buffer embedded: a data URI in JSON, the BIN chunk in .glb), then written
+  // through a temporary file so a failed write never leaves half a file.
   const std::string file = path.string();
   const bool binary = path.extension() == ".glb" || path.extension() == ".GLB";
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw GltfError(file, "cannot open file for writing");
+  std::ostringstream bytes;
   tinygltf::TinyGLTF writer;
-  const bool ok = writer.WriteGltfSceneToStream(&model, out, !binary, binary);
-  out.close();
-  if (!ok || !out) throw GltfError(file, "cannot write file");
+  if (!writer.WriteGltfSceneToStream(&model, bytes, !binary, binary)) throw GltfError(file, "cannot write file");
+  const std::string data = bytes.str();
+  try {
+    detail::write_file_atomically(
+        path, [&data](std::ostream& out) { out.write(data.data(), static_cast<std::streamsize>(data.size())); });
+  } catch (const std::runtime_error& e) {
+    // Its message is "PATH: problem"; the error type callers expect here is GltfError.
+    std::string why = e.what();
+    if (why.rfind(file + ": ", 0) == 0) why.erase(0, file.size() + 2);
+    throw GltfError(file, why);
+  }
 }
 
 }  // namespace performer

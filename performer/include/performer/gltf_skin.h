@@ -6,9 +6,11 @@
 #pragma once
 
 #include <filesystem>
+#include <span>
 #include <stdexcept>
 #include <string>
 
+#include "performer/face_model.h"
 #include "performer/skinned_mesh.h"
 
 namespace performer {
@@ -44,8 +46,12 @@ SkinnedMesh read_gltf_skinned(const std::filesystem::path& path);
 // embedded as a data URI (one self-contained file). Joints become nodes (a non-identity `above`
 // becomes a node of its own between joint and parent), the mesh one primitive on one more node,
 // with JOINTS_n as unsigned shorts and WEIGHTS_n as floats, 4 slots per set (padded with zero
-// weights). Throws std::invalid_argument when skinned_mesh_problem() finds one, GltfError when the
-// file cannot be written.
-void write_gltf_skinned(const std::filesystem::path& path, const SkinnedMesh& skinned);
+// weights). `morph_targets`, when given, become the mesh's morph targets (POSITION and NORMAL
+// displacements over every vertex, named in mesh.extras.targetNames as write_gltf_face names them), so
+// that one file carries a skinned avatar and its face. Throws std::invalid_argument when
+// skinned_mesh_problem() finds one or a target does not cover every vertex, GltfError when the file
+// cannot be written. Atomic: the file is complete or untouched.
+void write_gltf_skinned(const std::filesystem::path& path, const SkinnedMesh& skinned,
+                        std::span<const MorphTarget> morph_targets = {});
 
 }  // namespace performer

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "performer/procedural_head.h"
 #include "performer/viseme_library.h"
@@ -18,11 +19,16 @@ void check_frame_range(const Bvh& bvh, const std::filesystem::path& file, int fi
 }
 
 CliCharacter build_cli_character(const Skeleton& skeleton, unsigned threads) {
+  return build_cli_character(skeleton, threads, build_procedural_head(load_viseme_set(default_viseme_dir() / "visemes.tsv")));
+}
+
+CliCharacter build_cli_character(const Skeleton& skeleton, unsigned threads, FaceModel face, float output_scale) {
   CliCharacter out;
-  out.face = build_procedural_head(load_viseme_set(default_viseme_dir() / "visemes.tsv"));
+  out.face = std::move(face);
   CharacterParams params;
   params.threads = threads;
   params.body.threads = threads;
+  params.body.output_scale = output_scale;
   out.character = build_character(skeleton, out.face, params);
   return out;
 }

@@ -1,6 +1,6 @@
-// What `performer pose` and `performer render` share: the frame range check and the whole
-// performer they pose (the body grown around the BVH's skeleton, the procedural head on its head
-// joint).
+// What `performer pose`, `performer render` and `performer avatar` share: the frame range check and
+// the whole performer they pose (the body grown around the BVH's skeleton, the procedural head or
+// another face on its head joint).
 #pragma once
 
 #include <filesystem>
@@ -20,5 +20,9 @@ struct CliCharacter {
 };
 
 CliCharacter build_cli_character(const Skeleton& skeleton, unsigned threads);
+// The same with another face on the head joint (a face model in metres, +Y up, facing +Z, as the
+// procedural head and glTF files are), and the whole character in skeleton units times
+// `output_scale` (BodyMeshParams::output_scale).
+CliCharacter build_cli_character(const Skeleton& skeleton, unsigned threads, FaceModel face, float output_scale = 1.0f);
 
 }  // namespace performer::cli

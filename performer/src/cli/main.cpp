@@ -4,8 +4,9 @@
 //   performer visemes --lang yue --text "你好" -o weights.csv   lip-sync weights per frame (+ --wav)
 //   performer face --weights weights.csv -o frames/            the deformed head per frame
 //   performer pose --bvh walk.bvh --frames 0:99 [--text ... --lang ...] -o frames/   the whole performer
-//   performer render --bvh walk.bvh [--text ... --lang ...] [--effects env,hair,snow,toon] -o out.mp4
+//   performer render --bvh walk.bvh [--text ... --lang ...] [--effects env,hair,snow,toon] [--gltf avatar.glb] -o out.mp4
 //                                                              the rendered performer, as video with its speech
+//   performer avatar --bvh walk.bvh -o avatar.glb              the generated performer as a glTF avatar
 //
 // Every failure is one line on stderr starting "performer: " and a non-zero exit: 2 for a command
 // line that does not parse, 1 for anything that goes wrong running it.
@@ -17,6 +18,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "avatar.h"
 #include "face.h"
 #include "info.h"
 #include "pose.h"
@@ -78,7 +80,9 @@ int main(int argc, char** argv) {
       "  performer visemes --lang en-us --text \"Hello there\" --expression smile -o weights.json\n"
       "  performer face --weights weights.csv -o frames/ --format obj\n"
       "  performer pose --bvh 131_01.bvh --frames 0:119 --lang en-us --text \"Hello\" -o frames/\n"
-      "  performer render --bvh 131_01.bvh --lang en-us --text \"Hello\" --effects env,hair -o hello.mp4\n"};
+      "  performer render --bvh 131_01.bvh --lang en-us --text \"Hello\" --effects env,hair -o hello.mp4\n"
+      "  performer avatar --bvh 131_01.bvh -o avatar.glb\n"
+      "  performer render --bvh 131_01.bvh --gltf avatar.glb --lang en-us --text \"Hello\" -o avatar.mp4\n"};
   app.require_subcommand(1);
 
   std::string bvh_path;
@@ -129,8 +133,20 @@ int main(int argc, char** argv) {
   render->add_option("--cubemap", render_command.cubemap_dir,
                      "folder with posx/negx/posy/negy/posz/negz for env (default ../shared/assets/cubemap)");
   render->add_option("--threads", render_command.threads, "threads for building the character (default: all)");
+  render->add_option("--gltf", render_command.gltf,
+                     "a glTF 2.0 avatar (.glb/.gltf) instead of the generated performer: a skinned mesh whose joints "
+                     "follow the clip's by name and whose morph targets (Oculus or ARKit names) are the face, or a "
+                     "face alone, put on the generated body");
   render->add_option("--weights", render_weights, "face weights from a CSV (performer visemes) instead of lip-sync options");
   add_lip_sync_options(render, render_lip_sync);
+
+  performer::cli::AvatarCommand avatar_command;
+  CLI::App* avatar = app.add_subcommand("avatar", "the generated performer (body grown around the BVH's skeleton, procedural "
+                                                   "head) as a glTF 2.0 avatar in metres: skinned, with the face's targets "
+                                                   "as morph targets");
+  avatar->add_option("--bvh", avatar_command.bvh, "BVH motion capture file (its skeleton)")->required();
+  avatar->add_option("-o,--output", avatar_command.out, "a .glb or .gltf file")->required();
+  avatar->add_option("--threads", avatar_command.threads, "threads (default: all)");
 
   try {
     app.parse(argc, argv);
@@ -198,6 +214,8 @@ int main(int argc, char** argv) {
         if (!speech.samples.empty()) render_command.speech = &speech;
       }
       performer::cli::run_render(render_command, stderr);
+    } else if (avatar->parsed()) {
+      performer::cli::run_avatar(avatar_command, stderr);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "performer: %s\n", one_line(e.what()).c_str());
