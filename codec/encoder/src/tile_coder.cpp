@@ -309,7 +309,7 @@ void find_guard_bits(const Tile& tile, const CodingPlan& plan, CodedTile& coded)
     const int guard = std::max(plan_guard, coded.guard_bits_needed[job.component]);
     coded.block_magnitude_bitplanes[job.block_index] = guard + job.exponent - 1;
     t1::EncodedBlock& eb = coded.blocks[job.block_index];
-    eb.missing_msbs = plan_guard + job.exponent - 1 - eb.bit_planes;
+    eb.missing_msbs = plan_guard + job.exponent - 1 - eb.bit_planes + eb.first_pass_planes - 1;
   }
 }
 
