@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "codec/encoder/component_transform.h"
+#include "codec/ht/ht_block_encoder.h"
 #include "codec/encoder/encoder.h"
 #include "codec/encoder/quantization.h"
 #include "codec/rate/hull.h"
@@ -456,6 +457,13 @@ t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const E
   const t1::Distortion distortion = params.layers.empty() ? t1::Distortion::Skipped : t1::Distortion::Measured;
   const std::ptrdiff_t offset = static_cast<std::ptrdiff_t>(job.y0 * job.plane_width + job.x0);
   const auto stride = static_cast<std::ptrdiff_t>(job.plane_width);
+  if (params.ht && params.lossless)
+    return ht::encode_ht_block(t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height},
+                               magnitude_bitplanes, 0, distortion);
+  if (params.ht)
+    return ht::encode_ht_block(
+        t1::FloatBlock{coded.coefficients[job.component].data() + offset, stride, job.width, job.height, job.inverse_step},
+        magnitude_bitplanes, 0, distortion);
   if (params.lossless)
     return t1::encode_block(t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height},
                             job.orientation, magnitude_bitplanes, params.block_style, stop, distortion);
