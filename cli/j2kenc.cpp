@@ -210,6 +210,8 @@ int main(int argc, char** argv) {
   app.add_option("--codeblock", codeblock, "code-block size WxH, powers of two 4..1024, W*H <= 4096 (default 64x64)");
   app.add_option("--precincts", precincts, "precinct sizes WxH,... finest resolution first; the last is halved for coarser ones");
   app.add_option("--order", order, "progression order: LRCP, RLCP, RPCL, PCRL, CPRL (default LRCP)");
+  bool ht = false;
+  app.add_flag("--ht", ht, "HTJ2K: code every code-block with the high-throughput block coder of Part 15 (T.814)");
   app.add_flag("--sop", sop, "SOP marker before every packet");
   app.add_flag("--eph", eph, "EPH marker after every packet header");
   app.add_option("--modes", modes, "code-block mode switches: bypass,reset,termall,vcausal,pterm,segsym");
@@ -263,6 +265,7 @@ int main(int argc, char** argv) {
     options.levels = levels;
     options.threads = threads;
     options.code_every_pass = every_pass;
+    options.ht = ht;
     options.guard_bits = guard_bits;
     options.sop = sop;
     options.eph = eph;

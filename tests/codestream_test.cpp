@@ -1065,3 +1065,33 @@ INSTANTIATE_TEST_SUITE_P(Decoders, EmptyPackets, ::testing::ValuesIn(empty_cases
                          [](const ::testing::TestParamInfo<EmptyCase>& info) { return info.param.name; });
 
 }  // namespace
+
+namespace {
+
+// Part 15 (T.814 A.3): a CAP segment with Pcap's Part 15 bit and Ccap15 right after the SIZ, and
+// only with Rsiz bit 14; Ccap15's MAGB field follows the largest Mb.
+TEST(Cap, HtOnlyCapabilitiesAfterSiz) {
+  EXPECT_EQ(cs::ht_only_ccap15(false, 8), 0x0000);
+  EXPECT_EQ(cs::ht_only_ccap15(false, 9), 0x0001);
+  EXPECT_EQ(cs::ht_only_ccap15(true, 19), 0x0020 | 11);
+  EXPECT_EQ(cs::ht_only_ccap15(false, 27), 19);
+  EXPECT_EQ(cs::ht_only_ccap15(false, 28), 13 + 7);
+  EXPECT_EQ(cs::ht_only_ccap15(false, 47), 13 + 11);
+  EXPECT_EQ(cs::ht_only_ccap15(false, 48), 31);
+
+  cs::MainHeader h = rgb_header();
+  h.ccap15 = cs::ht_only_ccap15(false, 10);
+  EXPECT_NE(error_of([&] { cs::validate_main_header(h); }).find("Rsiz bit 14"), std::string::npos);
+  h.siz.rsiz = cs::kRsizCapabilitiesInCap;
+  std::vector<std::uint8_t> out;
+  cs::ByteWriter w(out);
+  cs::write_main_header(w, h);
+  const std::size_t cap = 4 + (static_cast<std::size_t>(out[4]) << 8 | out[5]);
+  EXPECT_EQ(out[6], 0x40);
+  const std::vector<std::uint8_t> expected = {0xFF, 0x50, 0x00, 0x08, 0x00, 0x02, 0x00, 0x00, 0x00, 0x02};
+  EXPECT_EQ(std::vector<std::uint8_t>(out.begin() + static_cast<std::ptrdiff_t>(cap), out.begin() + static_cast<std::ptrdiff_t>(cap) + 10), expected);
+  EXPECT_EQ(out[cap + 10], 0xFF);
+  EXPECT_EQ(out[cap + 11], 0x52);
+}
+
+}  // namespace

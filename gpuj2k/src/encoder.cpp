@@ -159,6 +159,7 @@ codec::EncodeParams base_params(const EncodeOptions& o) {
   p.comment = o.comment;
   p.threads = o.threads;
   p.skip_passes = !o.code_every_pass;
+  p.ht = o.ht;
   p.dwt = o.dwt == DwtDevice::Cpu ? codec::DwtDevice::Cpu : o.dwt == DwtDevice::Gpu ? codec::DwtDevice::Gpu : codec::DwtDevice::Auto;
   if (o.progress) {
     auto callback = o.progress;

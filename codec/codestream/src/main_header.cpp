@@ -4,6 +4,8 @@
 
 #include "codec/codestream/delimiters.h"
 #include "codec/codestream/error.h"
+#include "codec/codestream/marker_segment.h"
+#include "codec/codestream/markers.h"
 
 namespace codec::cs {
 namespace {
@@ -40,7 +42,21 @@ void check_mct(const MainHeader& h) {
   }
 }
 
+void write_cap(ByteWriter& out, std::uint16_t ccap15) {
+  MarkerSegment seg(out, marker::CAP, "CAP");
+  out.u32(std::uint32_t{1} << (32 - 15));  // Pcap: bit for Part 15, counted from the MSB as Part 1
+  out.u16(ccap15);
+  seg.end();
+}
+
 }  // namespace
+
+std::uint16_t ht_only_ccap15(bool irreversible, int largest_magnitude_bitplanes) {
+  const int b = largest_magnitude_bitplanes;
+  // MAGB (T.814 Table A.5): B up to 8 -> 0; 9..27 -> B - 8; 28..47 -> 13 + B / 4; above -> 31.
+  const int magb = b <= 8 ? 0 : b < 28 ? b - 8 : b < 48 ? 13 + (b >> 2) : 31;
+  return static_cast<std::uint16_t>((irreversible ? 0x0020 : 0) | magb);
+}
 
 const CodingStyle& coding_style_for(const MainHeader& h, unsigned component) {
   for (const Coc& c : h.cocs)
@@ -64,6 +80,8 @@ void validate_main_header(const MainHeader& h) {
   for (const Qcc& q : h.qccs) validate_qcc(q, n);
   check_unique_components(h.qccs, n, "QCC");
   if (h.cod.mct) check_mct(h);
+  if (h.ccap15 && !(h.siz.rsiz & kRsizCapabilitiesInCap))
+    throw CodestreamError("SIZ: a CAP marker segment needs Rsiz bit 14 set");
 
   // The decoder reads one step per subband of the component, so the counts must agree.
   for (unsigned c = 0; c < n; ++c) {
@@ -84,6 +102,7 @@ void write_main_header(ByteWriter& out, const MainHeader& h) {
     const auto n = static_cast<unsigned>(h.siz.components.size());
     write_soc(out);
     write_siz(out, h.siz);  // SIZ must follow SOC directly (T.800 A.3)
+    if (h.ccap15) write_cap(out, *h.ccap15);
     write_cod(out, h.cod);
     for (const Coc& c : h.cocs) write_coc(out, c, n);
     write_qcd(out, h.qcd);

@@ -20,6 +20,10 @@
 namespace codec {
 namespace {
 
+// SPcod's code-block style with only bit 6 set: every code-block of the tile-component is an HT
+// block (T.814 Table A.2); the EBCOT mode bits (0-5) stay clear.
+constexpr std::uint8_t kHtBlockStyle = 0x40;
+
 cs::MainHeader main_header(const SourceImage& image, const EncodeParams& params, const CodingPlan& plan,
                            const std::vector<int>& guard_bits, int layers) {
   cs::MainHeader h;
@@ -44,7 +48,7 @@ cs::MainHeader main_header(const SourceImage& image, const EncodeParams& params,
   h.cod.style.levels = static_cast<unsigned>(style.levels);
   h.cod.style.xcb = static_cast<unsigned>(style.xcb);
   h.cod.style.ycb = static_cast<unsigned>(style.ycb);
-  h.cod.style.block_style = params.block_style.to_spcod();
+  h.cod.style.block_style = params.ht ? kHtBlockStyle : params.block_style.to_spcod();
   h.cod.style.transform = params.lossless ? cs::WaveletTransform::Reversible5x3 : cs::WaveletTransform::Irreversible9x7;
   if (style.explicit_precincts())
     for (int r = 0; r <= style.levels; ++r) {
@@ -71,6 +75,13 @@ cs::MainHeader main_header(const SourceImage& image, const EncodeParams& params,
       h.qccs.push_back(cs::Qcc{static_cast<unsigned>(c), q});
   }
   if (!params.comment.empty()) h.comments.push_back(cs::latin_comment(params.comment));
+  if (params.ht) {
+    int largest_mb = 0;
+    for (std::size_t c = 0; c < plan.quantization.size(); ++c)
+      for (int e : plan.quantization[c].exponents) largest_mb = std::max(largest_mb, guard_bits[c] + e - 1);
+    h.siz.rsiz = cs::kRsizCapabilitiesInCap;
+    h.ccap15 = cs::ht_only_ccap15(!params.lossless, largest_mb);
+  }
   return h;
 }
 

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "component_transform.h"
+#include "codec/ht/ht_block_encoder.h"
 #include "codec/encoder/encoder.h"
 #include "quantization.h"
 #include "codec/rate/hull.h"
@@ -309,7 +310,7 @@ void find_guard_bits(const Tile& tile, const CodingPlan& plan, CodedTile& coded)
     const int guard = std::max(plan_guard, coded.guard_bits_needed[job.component]);
     coded.block_magnitude_bitplanes[job.block_index] = guard + job.exponent - 1;
     t1::EncodedBlock& eb = coded.blocks[job.block_index];
-    eb.missing_msbs = plan_guard + job.exponent - 1 - eb.bit_planes;
+    eb.missing_msbs = plan_guard + job.exponent - 1 - eb.bit_planes + eb.first_pass_planes - 1;
   }
 }
 
@@ -456,6 +457,13 @@ t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const E
   const t1::Distortion distortion = params.layers.empty() ? t1::Distortion::Skipped : t1::Distortion::Measured;
   const std::ptrdiff_t offset = static_cast<std::ptrdiff_t>(job.y0 * job.plane_width + job.x0);
   const auto stride = static_cast<std::ptrdiff_t>(job.plane_width);
+  if (params.ht && params.lossless)
+    return ht::encode_ht_block(t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height},
+                               magnitude_bitplanes, 0, distortion);
+  if (params.ht)
+    return ht::encode_ht_block(
+        t1::FloatBlock{coded.coefficients[job.component].data() + offset, stride, job.width, job.height, job.inverse_step},
+        magnitude_bitplanes, 0, distortion);
   if (params.lossless)
     return t1::encode_block(t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height},
                             job.orientation, magnitude_bitplanes, params.block_style, stop, distortion);

@@ -37,6 +37,11 @@ struct EncodedBlock {
   double energy = 0.0;
   int missing_msbs = 0;  // zero bit-planes for the packet header: Mb minus the bit-planes coded
   int bit_planes = 0;    // magnitude bit-planes the coefficients use (the highest set bit, plus one)
+  // Bit-planes the first pass codes: 1 for EBCOT, whose first pass is a cleanup of the most
+  // significant plane; for an HT block (codec/ht), every plane from its most significant down to
+  // the one its cleanup pass codes. The packet header's zero bit-planes are then
+  // Mb - bit_planes + first_pass_planes - 1.
+  int first_pass_planes = 1;
   std::vector<PassInfo> passes;
   // Whether a StopRule ended the coding before the last pass the coefficients have (the block's
   // bit-planes would give 3 * planes - 2).

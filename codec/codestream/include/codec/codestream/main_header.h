@@ -1,4 +1,5 @@
 #pragma once
+#include <optional>
 #include <vector>
 
 #include "codec/codestream/byte_writer.h"
@@ -18,7 +19,19 @@ struct MainHeader {
   Quantization qcd;
   std::vector<Qcc> qccs;  // at most one per component
   std::vector<Comment> comments;
+  // Part 15 (HTJ2K, T.814 A.3): Ccap15, written in a CAP marker segment (Pcap with only bit 15's
+  // capability set) right after the SIZ. The SIZ's Rsiz must then have bit 14 set (capabilities
+  // in CAP). Absent: no CAP segment.
+  std::optional<std::uint16_t> ccap15;
 };
+
+// Ccap15 for a codestream whose code-blocks are all HT blocks coded with one HT set (HTONLY,
+// SINGLEHT, RGNFREE, HOMOGENEOUS; T.814 Table A.4): bit 5 when an irreversible transform may be
+// used, and in bits 0-4 the MAGB field for the largest Mb (magnitude bit-planes) of any code-block.
+std::uint16_t ht_only_ccap15(bool irreversible, int largest_magnitude_bitplanes);
+
+// Rsiz bit 14: the codestream's capabilities are given in a CAP marker segment.
+inline constexpr std::uint16_t kRsizCapabilitiesInCap = 0x4000;
 
 // The coding style and quantization that apply to `component` in the main header.
 const CodingStyle& coding_style_for(const MainHeader& h, unsigned component);

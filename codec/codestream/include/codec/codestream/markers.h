@@ -6,6 +6,7 @@ namespace codec::cs::marker {
 
 inline constexpr std::uint16_t SOC = 0xFF4F;  // start of codestream
 inline constexpr std::uint16_t SIZ = 0xFF51;  // image and tile size
+inline constexpr std::uint16_t CAP = 0xFF50;  // extended capabilities (T.800 A.5.2, used by T.814)
 inline constexpr std::uint16_t COD = 0xFF52;  // coding style default
 inline constexpr std::uint16_t COC = 0xFF53;  // coding style component
 inline constexpr std::uint16_t QCD = 0xFF5C;  // quantization default

@@ -1,0 +1,37 @@
+#pragma once
+#include <cstdint>
+#include <span>
+
+#include "codec/t1/block_encoder.h"
+
+namespace codec::ht {
+
+// HT block coding (ITU-T T.814 | ISO/IEC 15444-15, the FBCOT block coder) of one code-block,
+// behind the same seam as EBCOT (DESIGN.md, "Two block coders behind one seam"): it returns the
+// same EncodedBlock, so rate control, tier-2 and the codestream writer need not know which coder
+// ran beyond the CAP marker and the code-block style bit.
+//
+// The block is coded by one HT cleanup pass on bit-plane `cleanup_plane` (p): every sample's
+// magnitude with its p lowest bits dropped, all its remaining bits at once (quads, MEL, CxtVLC,
+// U-VLC and MagSgn; T.814 clause 7). p = 0 codes the indices exactly (lossless). The result has one
+// pass, terminated, whose length is the whole cleanup segment; `first_pass_planes` is the planes
+// it codes (bit_planes - p), so missing_msbs = Mb - 1 - p, which is how the packet header tells a
+// decoder the cleanup's plane. A block with no magnitude at or above 2^p has no pass and
+// missing_msbs = Mb. The distortion decrease assumes mid-point reconstruction, in EncodedBlock's
+// units (EBCOT's encode_block).
+//
+// `coefficients`: width * height quantisation indices, row by row, each magnitude below
+// 2^magnitude_bitplanes (Mb, at most 31); `fractions` as for encode_block (irreversible coding),
+// or empty. Sizes 1..1024 with width * height <= 4096. Throws std::invalid_argument otherwise.
+t1::EncodedBlock encode_ht_block(std::span<const std::int32_t> coefficients, int width, int height,
+                                 int magnitude_bitplanes, int cleanup_plane = 0,
+                                 std::span<const std::uint8_t> fractions = {},
+                                 t1::Distortion distortion = t1::Distortion::Measured);
+
+// The same on a block in place, as encode_block takes it (a float block is quantised as loaded).
+t1::EncodedBlock encode_ht_block(const t1::IntegerBlock& block, int magnitude_bitplanes, int cleanup_plane = 0,
+                                 t1::Distortion distortion = t1::Distortion::Measured);
+t1::EncodedBlock encode_ht_block(const t1::FloatBlock& block, int magnitude_bitplanes, int cleanup_plane = 0,
+                                 t1::Distortion distortion = t1::Distortion::Measured);
+
+}  // namespace codec::ht

@@ -1,0 +1,140 @@
+#pragma once
+#include <cstdint>
+#include <vector>
+
+// The three bit-streams of an HT cleanup segment (T.814 7.1) and how their bytes are stuffed so
+// that no byte pair 0xFF, 0x90..0xFF (a marker) appears in the codestream. The byte layout is
+// MagSgn bytes forwards, MEL bytes forwards, then the VLC bytes backwards from the segment's end.
+
+namespace codec::ht {
+
+// MagSgn (T.814 7.1.2): bits packed least significant first; a byte following 0xFF carries only
+// 7 bits, its most significant bit a stuffed 0.
+class MagSgnPacker {
+ public:
+  // The low `count` bits of `bits`, least significant first (count <= 32).
+  void put(std::uint32_t bits, int count) {
+    for (int i = 0; i < count; ++i) {
+      tmp_ |= ((bits >> i) & 1u) << used_;
+      if (++used_ == capacity_) flush_byte();
+    }
+  }
+  // Pads the last byte with 1s (a decoder reads 0xFF past the segment's MagSgn part, so the pad
+  // is what it would read anyway) and drops a final 0xFF, which the decoder's padding reproduces
+  // and which would otherwise form a marker with a following MEL or VLC byte.
+  std::vector<std::uint8_t> finish() {
+    if (used_ > 0) {
+      tmp_ |= (0xFFu << used_) & ((1u << capacity_) - 1);
+      if (tmp_ != 0xFF) bytes_.push_back(static_cast<std::uint8_t>(tmp_));
+    } else if (!bytes_.empty() && bytes_.back() == 0xFF) {
+      bytes_.pop_back();
+    }
+    return std::move(bytes_);
+  }
+
+ private:
+  void flush_byte() {
+    bytes_.push_back(static_cast<std::uint8_t>(tmp_));
+    capacity_ = tmp_ == 0xFF ? 7 : 8;
+    tmp_ = 0;
+    used_ = 0;
+  }
+  std::vector<std::uint8_t> bytes_;
+  std::uint32_t tmp_ = 0;
+  int used_ = 0, capacity_ = 8;
+};
+
+// The MEL bit packer (T.814 7.1.3): bits most significant first; after 0xFF, 7 bits.
+class MelPacker {
+ public:
+  void put_bit(int bit) {
+    tmp_ = (tmp_ << 1) | static_cast<std::uint32_t>(bit);
+    if (--remaining_ == 0) {
+      bytes_.push_back(static_cast<std::uint8_t>(tmp_));
+      remaining_ = tmp_ == 0xFF ? 7 : 8;
+      tmp_ = 0;
+    }
+  }
+  // A byte is pending when remaining < 8: bits were put, or the previous byte was 0xFF and the
+  // next must still carry its stuffed 0.
+  bool has_partial_byte() const { return remaining_ < 8; }
+  std::uint8_t partial_byte() const { return static_cast<std::uint8_t>(tmp_ << remaining_); }
+  std::uint8_t partial_mask() const { return static_cast<std::uint8_t>(0xFFu << remaining_); }
+  std::vector<std::uint8_t>& bytes() { return bytes_; }
+
+ private:
+  std::vector<std::uint8_t> bytes_;
+  std::uint32_t tmp_ = 0;
+  int remaining_ = 8;
+};
+
+// The MEL adaptive run-length coder (T.814 7.1.3, 7.3.3): a run of 0 symbols reaching 2^E[k]
+// sends a 1 and raises the state k; a 1 symbol sends 0 and the run so far in E[k] bits, most
+// significant first, and lowers k. E is the standard's 13-entry exponent table.
+class MelEncoder {
+ public:
+  void encode(bool symbol) {
+    if (!symbol) {
+      if (++run_ == (1 << kExponent[state_])) {
+        packer_.put_bit(1);
+        run_ = 0;
+        if (state_ < 12) ++state_;
+      }
+      return;
+    }
+    packer_.put_bit(0);
+    for (int i = kExponent[state_] - 1; i >= 0; --i) packer_.put_bit((run_ >> i) & 1);
+    run_ = 0;
+    if (state_ > 0) --state_;
+  }
+  // A pending run is closed with a 1 (a full run): the decoder reads zeros past the last symbol
+  // it needs, which it never uses.
+  MelPacker& finish() {
+    if (run_ > 0) packer_.put_bit(1);
+    run_ = 0;
+    return packer_;
+  }
+
+ private:
+  static constexpr int kExponent[13] = {0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 4, 5};
+  MelPacker packer_;
+  int state_ = 0, run_ = 0;
+};
+
+// The VLC packer (T.814 7.1.4): bits least significant first into bytes that are laid out
+// backwards from the end of the segment. The first byte written is a placeholder for the high
+// 8 bits of Scup and the next starts with 4 bits standing for its low nibble (both are filled in at
+// the end). A byte after one above 0x8F whose low 7 bits are all 1 carries a stuffed 0 in bit 7.
+class VlcPacker {
+ public:
+  VlcPacker() : bytes_{0xFF} {}
+  void put(std::uint32_t bits, int count) {
+    for (int i = 0; i < count; ++i) {
+      tmp_ |= ((bits >> i) & 1u) << used_;
+      ++used_;
+      if (last_ > 0x8F && tmp_ == 0x7F) ++used_;  // bit 7 is a stuffed 0
+      if (used_ == 8) {
+        bytes_.push_back(static_cast<std::uint8_t>(tmp_));
+        last_ = tmp_;
+        tmp_ = 0;
+        used_ = 0;
+      }
+    }
+  }
+  bool has_partial_byte() const { return used_ > 0; }
+  std::uint8_t partial_byte() const { return static_cast<std::uint8_t>(tmp_); }
+  std::uint8_t partial_mask() const { return static_cast<std::uint8_t>((1u << used_) - 1); }
+  // Whether the pending byte is the one that holds Scup's low nibble (then it may not be fused
+  // with the MEL's last byte: the nibble would overwrite MEL bits).
+  bool partial_is_scup_byte() const { return bytes_.size() == 1; }
+  // Bytes in the order written (the segment's last byte first).
+  std::vector<std::uint8_t>& bytes() { return bytes_; }
+
+ private:
+  std::vector<std::uint8_t> bytes_;
+  std::uint32_t tmp_ = 0xF;
+  int used_ = 4;
+  std::uint32_t last_ = 0xFF;
+};
+
+}  // namespace codec::ht

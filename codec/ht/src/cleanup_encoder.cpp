@@ -1,0 +1,257 @@
+#include "cleanup_encoder.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <stdexcept>
+#include <string>
+
+#include "bit_packers.h"
+#include "vlc_encoding.h"
+
+namespace codec::ht {
+namespace {
+
+// Magnitude exponent E_n (T.814 7.3.7): the bit length of 2 mu - 1, 0 for an insignificant sample.
+// v_n = 2 (mu - 1) + sign then fits in E_n bits, with bit E_n - 1 set whenever E_n > 1.
+int exponent(std::uint32_t mu) { return mu == 0 ? 0 : static_cast<int>(std::bit_width(2 * mu - 1)); }
+
+// The block's samples as the cleanup pass sees them, with 0 outside the block so that quads that
+// straddle its right or bottom edge and the neighbours of edge quads need no special cases.
+class SampleGrid {
+ public:
+  SampleGrid(std::span<const std::uint32_t> mu, std::span<const std::uint8_t> negative, int width, int height)
+      : mu_(mu), negative_(negative), width_(width), height_(height), exponents_(mu.size()) {
+    for (std::size_t i = 0; i < mu.size(); ++i) exponents_[i] = static_cast<std::uint8_t>(exponent(mu[i]));
+  }
+  bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < width_ && y < height_; }
+  int exponent_at(int x, int y) const { return inside(x, y) ? exponents_[index(x, y)] : 0; }
+  int significant(int x, int y) const { return exponent_at(x, y) != 0 ? 1 : 0; }
+  // v_n = 2 (mu - 1) + s (T.814 7.3.8), for a significant sample.
+  std::uint32_t magsgn_value(int x, int y) const {
+    const std::size_t i = index(x, y);
+    return 2 * (mu_[i] - 1) + (negative_[i] ? 1u : 0u);
+  }
+
+ private:
+  std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x); }
+  std::span<const std::uint32_t> mu_;
+  std::span<const std::uint8_t> negative_;
+  int width_, height_;
+  std::vector<std::uint8_t> exponents_;
+};
+
+// A quad's samples in the order of its significance pattern rho: top-left, bottom-left,
+// top-right, bottom-right (T.814 7.3.1).
+constexpr std::array<std::array<int, 2>, 4> kQuadOffsets{{{0, 0}, {0, 1}, {1, 0}, {1, 1}}};
+
+struct QuadCoding {
+  int x0 = 0, y0 = 0;    // top-left sample
+  int rho = 0;           // significance pattern
+  int context = 0;       // c_q
+  int exponent_bits = 0; // U_q: bits of each significant sample's v_n, before the EMB saving
+  int residual = 0;      // u_q = U_q - kappa_q
+  VlcCode code;          // the CxtVLC codeword, with its e_k pattern
+};
+
+// Context c_q of a quad in the first row of quads (T.814 7.3.5): from the four samples of the quad
+// to its left.
+int initial_row_context(const SampleGrid& g, int x0) {
+  const int far = g.significant(x0 - 2, 0) | g.significant(x0 - 2, 1);
+  return far | (g.significant(x0 - 1, 0) << 1) | (g.significant(x0 - 1, 1) << 2);
+}
+
+// Context c_q of a quad in any other row: from the row above (x0 - 1 .. x0 + 2) and the two
+// samples to its left.
+int other_row_context(const SampleGrid& g, int x0, int y0) {
+  const int north = g.significant(x0 - 1, y0 - 1) | g.significant(x0, y0 - 1);
+  const int west = g.significant(x0 - 1, y0) | g.significant(x0 - 1, y0 + 1);
+  const int east = g.significant(x0 + 1, y0 - 1) | g.significant(x0 + 2, y0 - 1);
+  return north | (west << 1) | (east << 2);
+}
+
+// Exponent predictor kappa_q (T.814 7.3.7): 1 in the first row of quads; elsewhere, for a quad
+// with more than one significant sample, the largest exponent among the four samples above it
+// (x0 - 1 .. x0 + 2) less one, and at least 1.
+int exponent_predictor(const SampleGrid& g, int x0, int y0, int rho) {
+  if (y0 == 0) return 1;
+  const bool several = (rho & (rho - 1)) != 0;
+  if (!several) return 1;
+  int largest = 0;
+  for (int dx = -1; dx <= 2; ++dx) largest = std::max(largest, g.exponent_at(x0 + dx, y0 - 1));
+  return std::max(1, largest - 1);
+}
+
+QuadCoding analyse_quad(const SampleGrid& g, const VlcEncodingTable& table, int qx, int qy) {
+  QuadCoding q;
+  q.x0 = 2 * qx;
+  q.y0 = 2 * qy;
+  int largest = 0;
+  std::array<int, 4> e{};
+  for (int n = 0; n < 4; ++n) {
+    e[static_cast<std::size_t>(n)] = g.exponent_at(q.x0 + kQuadOffsets[n][0], q.y0 + kQuadOffsets[n][1]);
+    if (e[static_cast<std::size_t>(n)] != 0) q.rho |= 1 << n;
+    largest = std::max(largest, e[static_cast<std::size_t>(n)]);
+  }
+  q.context = qy == 0 ? initial_row_context(g, q.x0) : other_row_context(g, q.x0, q.y0);
+  const int kappa = exponent_predictor(g, q.x0, q.y0, q.rho);
+  q.exponent_bits = std::max(largest, kappa);
+  q.residual = q.exponent_bits - kappa;
+  // The samples whose exponent reaches U_q: the EMB patterns may imply their top bit.
+  int at_top = 0;
+  if (q.residual > 0)
+    for (int n = 0; n < 4; ++n)
+      if (e[static_cast<std::size_t>(n)] == q.exponent_bits) at_top |= 1 << n;
+  if (q.rho != 0 || q.context != 0) q.code = table.lookup(q.context, q.rho, q.residual > 0, at_top);
+  return q;
+}
+
+// The unsigned residual u_q as U-VLC (T.814 7.3.6): a prefix of 1 to 3 bits, a suffix of 0, 1 or
+// 5 bits and, for the largest values, a 4-bit extension; u = prefix value + suffix + 4 extension.
+struct UvlcCode {
+  std::uint32_t prefix = 0, suffix = 0, extension = 0;
+  int prefix_bits = 0, suffix_bits = 0, extension_bits = 0;
+};
+
+UvlcCode uvlc(int u) {
+  UvlcCode c;
+  if (u == 1) {
+    c.prefix = 1, c.prefix_bits = 1;  // "1"
+  } else if (u == 2) {
+    c.prefix = 2, c.prefix_bits = 2;  // "01", first bit first
+  } else if (u <= 4) {
+    c.prefix = 4, c.prefix_bits = 3;  // "001"
+    c.suffix = static_cast<std::uint32_t>(u - 3), c.suffix_bits = 1;
+  } else {
+    c.prefix = 0, c.prefix_bits = 3;  // "000"
+    const int d = u - 5;
+    c.suffix_bits = 5;
+    if (d < 28) {
+      c.suffix = static_cast<std::uint32_t>(d);
+    } else {
+      c.suffix = static_cast<std::uint32_t>(28 + ((d - 28) & 3));
+      c.extension = static_cast<std::uint32_t>((d - 28) >> 2), c.extension_bits = 4;
+    }
+  }
+  return c;
+}
+
+// The residuals of one or two quads, in the order the decoder reads them: both prefixes, both
+// suffixes, both extensions.
+void put_residuals(VlcPacker& vlc, const UvlcCode* codes, int count) {
+  for (int k = 0; k < count; ++k) vlc.put(codes[k].prefix, codes[k].prefix_bits);
+  for (int k = 0; k < count; ++k) vlc.put(codes[k].suffix, codes[k].suffix_bits);
+  for (int k = 0; k < count; ++k) vlc.put(codes[k].extension, codes[k].extension_bits);
+}
+
+void encode_pair_residuals(const QuadCoding* quads, int count, bool initial_row, MelEncoder& mel, VlcPacker& vlc) {
+  std::array<UvlcCode, 2> codes{};
+  int coded = 0;
+  const bool both = count == 2 && quads[0].residual > 0 && quads[1].residual > 0;
+  if (both && initial_row) {
+    // T.814 7.3.6: in the first row a MEL symbol tells whether both residuals exceed 2; if so each
+    // is sent less 2; if not and the first exceeds 2, the second (1 or 2) takes a single bit.
+    const int u0 = quads[0].residual, u1 = quads[1].residual;
+    const bool both_large = std::min(u0, u1) > 2;
+    mel.encode(both_large);
+    if (both_large) {
+      codes[0] = uvlc(u0 - 2), codes[1] = uvlc(u1 - 2);
+      put_residuals(vlc, codes.data(), 2);
+    } else if (u0 > 2) {
+      const UvlcCode first = uvlc(u0);
+      vlc.put(first.prefix, first.prefix_bits);
+      vlc.put(static_cast<std::uint32_t>(u1 - 1), 1);
+      vlc.put(first.suffix, first.suffix_bits);
+      vlc.put(first.extension, first.extension_bits);
+    } else {
+      codes[0] = uvlc(u0), codes[1] = uvlc(u1);
+      put_residuals(vlc, codes.data(), 2);
+    }
+    return;
+  }
+  for (int k = 0; k < count; ++k)
+    if (quads[k].residual > 0) codes[static_cast<std::size_t>(coded++)] = uvlc(quads[k].residual);
+  put_residuals(vlc, codes.data(), coded);
+}
+
+// MagSgn bits of a quad (T.814 7.3.8): each significant sample sends the low U_q bits of v_n, or
+// U_q - 1 where e_k implies the top one.
+void put_magsgn(const SampleGrid& g, const QuadCoding& q, MagSgnPacker& ms) {
+  for (int n = 0; n < 4; ++n) {
+    if (!((q.rho >> n) & 1)) continue;
+    const int bits = q.exponent_bits - ((q.code.e_k >> n) & 1);
+    ms.put(g.magsgn_value(q.x0 + kQuadOffsets[n][0], q.y0 + kQuadOffsets[n][1]), bits);
+  }
+}
+
+// Joins MagSgn, MEL and VLC into Dcup (T.814 7.1): the MEL's and the VLC's last, partial bytes
+// share one byte where their bits agree (and that byte is not 0xFF), and Scup = MEL + VLC bytes
+// goes into the last byte and the low nibble of the one before it.
+std::vector<std::uint8_t> assemble(std::vector<std::uint8_t> magsgn, MelPacker& mel, VlcPacker& vlc) {
+  std::vector<std::uint8_t>& mel_bytes = mel.bytes();
+  std::vector<std::uint8_t>& vlc_bytes = vlc.bytes();
+  const bool mel_pending = mel.has_partial_byte(), vlc_pending = vlc.has_partial_byte();
+  if (mel_pending && vlc_pending && !vlc.partial_is_scup_byte()) {
+    const std::uint8_t mel_byte = mel.partial_byte(), vlc_byte = vlc.partial_byte();
+    const std::uint8_t fused = mel_byte | vlc_byte;
+    const bool agree = ((fused ^ mel_byte) & mel.partial_mask()) == 0 && ((fused ^ vlc_byte) & vlc.partial_mask()) == 0;
+    if (agree && fused != 0xFF) {
+      mel_bytes.push_back(fused);
+    } else {
+      mel_bytes.push_back(mel_byte);
+      vlc_bytes.push_back(vlc_byte);
+    }
+  } else {
+    if (mel_pending) mel_bytes.push_back(mel.partial_byte());
+    if (vlc_pending) vlc_bytes.push_back(vlc.partial_byte());
+  }
+  const std::size_t scup = mel_bytes.size() + vlc_bytes.size();
+  if (scup > 4079) throw std::logic_error("HT cleanup: MEL and VLC need " + std::to_string(scup) + " bytes, over 4079");
+  std::vector<std::uint8_t> out = std::move(magsgn);
+  out.reserve(out.size() + scup);
+  out.insert(out.end(), mel_bytes.begin(), mel_bytes.end());
+  out.insert(out.end(), vlc_bytes.rbegin(), vlc_bytes.rend());
+  out[out.size() - 1] = static_cast<std::uint8_t>(scup >> 4);
+  out[out.size() - 2] = static_cast<std::uint8_t>((out[out.size() - 2] & 0xF0) | (scup & 0x0F));
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitudes,
+                                         std::span<const std::uint8_t> negative, int width, int height) {
+  if (width < 1 || height < 1 || width > 1024 || height > 1024 || width * height > 4096)
+    throw std::invalid_argument("HT cleanup: a code-block of " + std::to_string(width) + "x" + std::to_string(height) +
+                                " is outside 1..1024 with at most 4096 samples");
+  const auto samples = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  if (magnitudes.size() != samples || negative.size() != samples)
+    throw std::invalid_argument("HT cleanup: magnitudes and signs must hold width * height samples");
+  const SampleGrid grid(magnitudes, negative, width, height);
+  const int quads_wide = (width + 1) / 2, quads_high = (height + 1) / 2;
+
+  MagSgnPacker magsgn;
+  MelEncoder mel;
+  VlcPacker vlc;
+  for (int qy = 0; qy < quads_high; ++qy) {
+    const bool initial_row = qy == 0;
+    const VlcEncodingTable& table = vlc_encoding_table(initial_row ? QuadRowKind::Initial : QuadRowKind::Other);
+    // Quads go in pairs (T.814 7.3.1): both quads' significance, then their residuals, then MagSgn.
+    for (int qx = 0; qx < quads_wide; qx += 2) {
+      const int count = std::min(2, quads_wide - qx);
+      std::array<QuadCoding, 2> quads;
+      for (int k = 0; k < count; ++k) {
+        quads[static_cast<std::size_t>(k)] = analyse_quad(grid, table, qx + k, qy);
+        const QuadCoding& q = quads[static_cast<std::size_t>(k)];
+        // Context 0: the MEL says whether the quad has any significant sample (T.814 7.3.4).
+        if (q.context == 0) mel.encode(q.rho != 0);
+        if (q.context != 0 || q.rho != 0) vlc.put(q.code.codeword, q.code.length);
+      }
+      encode_pair_residuals(quads.data(), count, initial_row, mel, vlc);
+      for (int k = 0; k < count; ++k) put_magsgn(grid, quads[static_cast<std::size_t>(k)], magsgn);
+    }
+  }
+  std::vector<std::uint8_t> ms = magsgn.finish();
+  return assemble(std::move(ms), mel.finish(), vlc);
+}
+
+}  // namespace codec::ht

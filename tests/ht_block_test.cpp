@@ -1,0 +1,453 @@
+// The HT block coder against an independent model of T.814's cleanup decoding: a plain decoder
+// written here from the standard's equations (the MEL run-length decoder, the VLC read backwards
+// with its bit-unstuffing, CxtVLC decoding by searching the table's rows, U-VLC, the exponent
+// predictor and MagSgn with the EMB's implied bits), which must recover every random block the
+// encoder codes: the exact magnitudes and signs at cleanup plane 0, and |q| >> p with its sign at
+// plane p. Every code-block shape, every bit-plane count. The decoders in j2k_ht_test then prove
+// the same through OpenJPEG, Grok and OpenJPH.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "codec/ht/cxt_vlc_table.h"
+#include "codec/ht/ht_block_encoder.h"
+
+namespace {
+
+using codec::ht::CxtVlcRow;
+using codec::ht::QuadRowKind;
+
+// ---- The model decoder -------------------------------------------------------------------------
+
+// MagSgn (T.814 7.1.2): forward, least significant bit first; a byte after 0xFF gives 7 bits; past
+// the MagSgn part (Pcup bytes) the decoder reads 0xFF.
+class MagSgnReader {
+ public:
+  MagSgnReader(const std::vector<std::uint8_t>& d, std::size_t pcup) : d_(d), pcup_(pcup) {}
+  std::uint32_t read(int count) {
+    std::uint32_t v = 0;
+    for (int i = 0; i < count; ++i) v |= static_cast<std::uint32_t>(bit()) << i;
+    return v;
+  }
+
+ private:
+  int bit() {
+    if (left_ == 0) {
+      const unsigned byte = pos_ < pcup_ ? d_[pos_] : 0xFF;
+      ++pos_;
+      left_ = previous_ff_ ? 7 : 8;
+      previous_ff_ = byte == 0xFF;
+      current_ = byte;
+      used_ = 0;
+    }
+    --left_;
+    return static_cast<int>((current_ >> used_++) & 1);
+  }
+  const std::vector<std::uint8_t>& d_;
+  std::size_t pcup_, pos_ = 0;
+  int left_ = 0, used_ = 0;
+  unsigned current_ = 0;
+  bool previous_ff_ = false;
+};
+
+// The MEL bits (T.814 7.1.3): forward from Pcup, most significant bit first, 7 bits after 0xFF,
+// 0xFF past the end. The run-length decoder (7.3.3) on top, with the 13-entry exponent table.
+class MelDecoder {
+ public:
+  MelDecoder(const std::vector<std::uint8_t>& d, std::size_t pcup) : d_(d), pos_(pcup) {}
+  int decode() {
+    while (zeros_ == 0 && !one_) {
+      if (bit()) {
+        zeros_ = 1 << kE[k_];
+        k_ = std::min(k_ + 1, 12);
+      } else {
+        int run = 0;
+        for (int i = 0; i < kE[k_]; ++i) run = run << 1 | bit();
+        zeros_ = run;
+        one_ = true;
+        k_ = std::max(k_ - 1, 0);
+      }
+    }
+    if (zeros_ > 0) {
+      --zeros_;
+      return 0;
+    }
+    one_ = false;
+    return 1;
+  }
+
+ private:
+  int bit() {
+    if (left_ == 0) {
+      const unsigned byte = pos_ < d_.size() ? d_[pos_] : 0xFF;
+      ++pos_;
+      left_ = previous_ff_ ? 7 : 8;
+      previous_ff_ = byte == 0xFF;
+      current_ = byte;
+    }
+    --left_;
+    return static_cast<int>((current_ >> left_) & 1);
+  }
+  static constexpr int kE[13] = {0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 4, 5};
+  const std::vector<std::uint8_t>& d_;
+  std::size_t pos_;
+  int left_ = 0;
+  unsigned current_ = 0;
+  bool previous_ff_ = false;
+  int k_ = 0, zeros_ = 0;
+  bool one_ = false;
+};
+
+// The VLC bits (T.814 7.1.4), unpacked up front: backwards from the segment's end, least
+// significant bit first; the last byte is Scup's, the one before gives its upper 4 bits; a byte
+// whose predecessor (in reading order) exceeds 0x8F and whose low 7 bits are all 1 gives 7 bits.
+std::vector<int> vlc_bits(const std::vector<std::uint8_t>& d) {
+  std::vector<int> bits;
+  unsigned last = 0xFF;
+  for (std::size_t i = d.size() - 1; i-- > 0;) {
+    const unsigned byte = i == d.size() - 2 ? (d[i] | 0x0Fu) : d[i];
+    const int first = i == d.size() - 2 ? 4 : 0;
+    const int count = last > 0x8F && (byte & 0x7F) == 0x7F ? 7 : 8;
+    for (int b = first; b < count; ++b) bits.push_back(static_cast<int>((byte >> b) & 1));
+    last = d[i];
+  }
+  bits.resize(bits.size() + 64, 0);
+  return bits;
+}
+
+struct Decoded {
+  std::vector<std::uint32_t> mu;
+  std::vector<int> negative;
+};
+
+int exponent_of(std::uint32_t mu) {  // smallest E with 2 mu - 1 < 2^E
+  if (mu == 0) return 0;
+  int e = 0;
+  while ((std::uint64_t{1} << e) <= 2 * std::uint64_t{mu} - 1) ++e;
+  return e;
+}
+
+Decoded decode_cleanup(const std::vector<std::uint8_t>& d, int width, int height) {
+  const std::size_t lcup = d.size();
+  const std::size_t scup = 16u * d[lcup - 1] + (d[lcup - 2] & 0x0Fu);
+  EXPECT_GE(scup, 2u);
+  EXPECT_LE(scup, lcup);
+  const std::size_t pcup = lcup - scup;
+  MagSgnReader magsgn(d, pcup);
+  MelDecoder mel(d, pcup);
+  const std::vector<int> vlc = vlc_bits(d);
+  std::size_t vpos = 0;
+  auto vbit = [&] { return vlc.at(vpos++); };
+
+  const int qw = (width + 1) / 2, qh = (height + 1) / 2;
+  const int pw = 2 * qw, ph = 2 * qh;  // the quad grid, which may overhang the block
+  std::vector<int> sigma(static_cast<std::size_t>(pw * ph), 0), expo(static_cast<std::size_t>(pw * ph), 0);
+  std::vector<std::uint32_t> mu(static_cast<std::size_t>(pw * ph), 0);
+  std::vector<int> neg(static_cast<std::size_t>(pw * ph), 0);
+  auto at = [&](std::vector<int>& a, int x, int y) -> int { return x < 0 || y < 0 || x >= pw || y >= ph ? 0 : a[static_cast<std::size_t>(y * pw + x)]; };
+  const int dx[4] = {0, 0, 1, 1}, dy[4] = {0, 1, 0, 1};
+
+  auto find_row = [&](QuadRowKind kind, int c) -> const CxtVlcRow& {
+    for (const CxtVlcRow& r : codec::ht::cxt_vlc_rows(kind)) {
+      if (r.context != c) continue;
+      bool match = true;
+      for (int i = 0; i < r.length && match; ++i) match = vlc.at(vpos + static_cast<std::size_t>(i)) == ((r.codeword >> i) & 1);
+      if (match) {
+        vpos += r.length;
+        return r;
+      }
+    }
+    ADD_FAILURE() << "no CxtVLC codeword matches";
+    static const CxtVlcRow none{};
+    return none;
+  };
+  auto u_prefix = [&] { return vbit() ? 1 : vbit() ? 2 : vbit() ? 3 : 5; };
+  auto u_suffix = [&](int pfx) {
+    if (pfx < 3) return 0;
+    if (pfx == 3) return vbit();
+    int v = 0;
+    for (int i = 0; i < 5; ++i) v |= vbit() << i;
+    return v;
+  };
+  auto u_ext = [&](int sfx) {
+    if (sfx < 28) return 0;
+    int v = 0;
+    for (int i = 0; i < 4; ++i) v |= vbit() << i;
+    return v;
+  };
+
+  for (int qy = 0; qy < qh; ++qy) {
+    const QuadRowKind kind = qy == 0 ? QuadRowKind::Initial : QuadRowKind::Other;
+    for (int qx0 = 0; qx0 < qw; qx0 += 2) {
+      const int count = std::min(2, qw - qx0);
+      int rho[2] = {0, 0}, uoff[2] = {0, 0}, ek[2] = {0, 0}, e1[2] = {0, 0}, u[2] = {0, 0};
+      for (int k = 0; k < count; ++k) {
+        const int x = 2 * (qx0 + k), y = 2 * qy;
+        int c;
+        if (qy == 0) {  // formula for the initial line-pair
+          c = (at(sigma, x - 2, 0) | at(sigma, x - 2, 1)) + 2 * at(sigma, x - 1, 0) + 4 * at(sigma, x - 1, 1);
+        } else {
+          c = (at(sigma, x - 1, y - 1) | at(sigma, x, y - 1)) + 2 * (at(sigma, x - 1, y) | at(sigma, x - 1, y + 1)) +
+              4 * (at(sigma, x + 1, y - 1) | at(sigma, x + 2, y - 1));
+        }
+        if (c == 0 && mel.decode() == 0) continue;  // an all-insignificant quad
+        const CxtVlcRow& r = find_row(kind, c);
+        rho[k] = r.rho, uoff[k] = r.u_off, ek[k] = r.e_k, e1[k] = r.e_1;
+        for (int n = 0; n < 4; ++n) sigma[static_cast<std::size_t>((y + dy[n]) * pw + x + dx[n])] = (rho[k] >> n) & 1;
+      }
+      if (count == 2 && uoff[0] && uoff[1] && qy == 0) {
+        if (mel.decode()) {
+          const int p0 = u_prefix(), p1 = u_prefix();
+          const int s0 = u_suffix(p0), s1 = u_suffix(p1);
+          u[0] = 2 + p0 + s0 + 4 * u_ext(s0);
+          u[1] = 2 + p1 + s1 + 4 * u_ext(s1);
+        } else {
+          const int p0 = u_prefix();
+          if (p0 > 2) {
+            u[1] = vbit() + 1;
+            const int s0 = u_suffix(p0);
+            u[0] = p0 + s0 + 4 * u_ext(s0);
+          } else {
+            const int p1 = u_prefix();
+            const int s0 = u_suffix(p0), s1 = u_suffix(p1);
+            u[0] = p0 + s0 + 4 * u_ext(s0);
+            u[1] = p1 + s1 + 4 * u_ext(s1);
+          }
+        }
+      } else {
+        int pfx[2] = {0, 0}, sfx[2] = {0, 0};
+        for (int k = 0; k < count; ++k)
+          if (uoff[k]) pfx[k] = u_prefix();
+        for (int k = 0; k < count; ++k)
+          if (uoff[k]) sfx[k] = u_suffix(pfx[k]);
+        for (int k = 0; k < count; ++k)
+          if (uoff[k]) u[k] = pfx[k] + sfx[k] + 4 * u_ext(sfx[k]);
+      }
+      for (int k = 0; k < count; ++k) {
+        const int x = 2 * (qx0 + k), y = 2 * qy;
+        int kappa = 1;
+        if (qy > 0 && (rho[k] & (rho[k] - 1)) != 0) {
+          int emax = 0;
+          for (int ddx = -1; ddx <= 2; ++ddx) emax = std::max(emax, at(expo, x + ddx, y - 1));
+          kappa = std::max(1, emax - 1);
+        }
+        const int big_u = kappa + u[k];
+        for (int n = 0; n < 4; ++n) {
+          if (!((rho[k] >> n) & 1)) continue;
+          const int m = big_u - ((ek[k] >> n) & 1);
+          std::uint64_t v = magsgn.read(m);
+          v |= static_cast<std::uint64_t>((e1[k] >> n) & 1) << m;
+          const auto i = static_cast<std::size_t>((y + dy[n]) * pw + x + dx[n]);
+          mu[i] = static_cast<std::uint32_t>((v >> 1) + 1);
+          neg[i] = static_cast<int>(v & 1);
+          expo[i] = exponent_of(mu[i]);
+          if (uoff[k]) {
+            EXPECT_LE(expo[i], big_u);
+          }
+        }
+        if (uoff[k]) {  // with a residual, U_q is the quad's largest exponent
+          int emax = 0;
+          for (int n = 0; n < 4; ++n) emax = std::max(emax, at(expo, x + dx[n], y + dy[n]));
+          EXPECT_EQ(emax, big_u);
+        }
+      }
+    }
+  }
+  Decoded out;
+  for (int y = 0; y < ph; ++y)
+    for (int x = 0; x < pw; ++x) {
+      const auto i = static_cast<std::size_t>(y * pw + x);
+      if (x >= width || y >= height) {
+        EXPECT_EQ(sigma[i], 0) << "a sample outside the block is significant";
+        continue;
+      }
+      out.mu.push_back(mu[i]);
+      out.negative.push_back(neg[i]);
+    }
+  return out;
+}
+
+// ---- Random blocks -----------------------------------------------------------------------------
+
+// A block whose largest magnitude has exactly `planes` bits; a mix of zero runs, small values and
+// large ones, with a density that varies from block to block, so that MEL runs, every context and
+// the U-VLC extension all occur.
+std::vector<std::int32_t> random_block(std::mt19937& rng, int width, int height, int planes) {
+  const auto n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  std::vector<std::int32_t> block(n, 0);
+  if (planes == 0) return block;
+  const double density = std::uniform_real_distribution<double>(0.02, 1.0)(rng);
+  std::bernoulli_distribution present(density), negative(0.5);
+  std::uniform_int_distribution<int> bits(1, planes);
+  for (auto& v : block) {
+    if (!present(rng)) continue;
+    const int b = bits(rng);
+    const std::uint32_t top = std::uint32_t{1} << (b - 1);
+    const std::uint32_t m = top | (static_cast<std::uint32_t>(rng()) & (top - 1));
+    v = negative(rng) ? -static_cast<std::int32_t>(m) : static_cast<std::int32_t>(m);
+  }
+  const std::uint32_t peak = (std::uint32_t{1} << (planes - 1)) | (static_cast<std::uint32_t>(rng()) & ((std::uint32_t{1} << (planes - 1)) - 1));
+  block[static_cast<std::size_t>(rng() % n)] = static_cast<std::int32_t>(peak);
+  return block;
+}
+
+std::vector<std::pair<int, int>> all_shapes() {
+  std::vector<std::pair<int, int>> shapes;
+  for (int w = 1; w <= 1024; w *= 2)
+    for (int h = 1; h <= 1024; h *= 2)
+      if (w * h <= 4096) shapes.emplace_back(w, h);
+  // Edge blocks: odd sizes, where quads overhang the right and bottom edges.
+  for (auto s : {std::pair{3, 3}, {5, 7}, {7, 5}, {1, 3}, {3, 1}, {33, 31}, {63, 63}, {1023, 1}, {1, 1023}, {5, 819}})
+    shapes.push_back(s);
+  return shapes;
+}
+
+void expect_no_marker(const std::vector<std::uint8_t>& d, const std::string& where) {
+  for (std::size_t i = 0; i + 1 < d.size(); ++i)
+    if (d[i] == 0xFF && d[i + 1] > 0x8F) {
+      ADD_FAILURE() << where << ": bytes " << i << ", " << i + 1 << " form a marker";
+      return;
+    }
+}
+
+void check_round_trip(const std::vector<std::int32_t>& block, int width, int height, int planes, int p,
+                      const std::string& where) {
+  const int mb = std::max(planes, p + 1);
+  const codec::t1::EncodedBlock eb = codec::ht::encode_ht_block(block, width, height, mb, p);
+  ASSERT_EQ(eb.bit_planes, planes) << where;
+  if (planes <= p) {
+    EXPECT_TRUE(eb.passes.empty()) << where;
+    EXPECT_EQ(eb.missing_msbs, mb) << where;
+    return;
+  }
+  ASSERT_EQ(eb.passes.size(), 1u) << where;
+  EXPECT_EQ(eb.passes[0].length, eb.data.size()) << where;
+  EXPECT_TRUE(eb.passes[0].terminated) << where;
+  EXPECT_EQ(eb.missing_msbs, mb - 1 - p) << where;
+  EXPECT_EQ(eb.first_pass_planes, planes - p) << where;
+  if (p == 0) {
+    EXPECT_DOUBLE_EQ(eb.passes[0].distortion_decrease, eb.energy) << where;
+  }
+  expect_no_marker(eb.data, where);
+  const Decoded d = decode_cleanup(eb.data, width, height);
+  ASSERT_EQ(d.mu.size(), block.size()) << where;
+  for (std::size_t i = 0; i < block.size(); ++i) {
+    const std::uint32_t m = block[i] < 0 ? static_cast<std::uint32_t>(-static_cast<std::int64_t>(block[i])) : static_cast<std::uint32_t>(block[i]);
+    const std::uint32_t expected = m >> p;
+    if (d.mu[i] != expected || (expected != 0 && d.negative[i] != (block[i] < 0 ? 1 : 0))) {
+      ADD_FAILURE() << where << ": sample " << i << " (" << i % static_cast<std::size_t>(width) << ", "
+                    << i / static_cast<std::size_t>(width) << ") decodes to " << (d.negative[i] ? "-" : "") << d.mu[i]
+                    << ", expected " << (block[i] < 0 ? "-" : "") << expected;
+      return;
+    }
+  }
+}
+
+// ---- Tests -------------------------------------------------------------------------------------
+
+TEST(HtTables, EachContextIsACompletePrefixCodeWithConsistentPatterns) {
+  for (QuadRowKind kind : {QuadRowKind::Initial, QuadRowKind::Other}) {
+    const auto rows = codec::ht::cxt_vlc_rows(kind);
+    EXPECT_EQ(rows.size(), kind == QuadRowKind::Initial ? 444u : 358u);
+    for (int c = 0; c < 8; ++c) {
+      double kraft = 0;
+      std::vector<CxtVlcRow> in_context;
+      for (const CxtVlcRow& r : rows)
+        if (r.context == c) in_context.push_back(r);
+      for (const CxtVlcRow& r : in_context) {
+        ASSERT_GE(r.length, 1);
+        ASSERT_LE(r.length, 7);
+        kraft += 1.0 / (1 << r.length);
+        EXPECT_EQ(r.e_k & ~r.rho, 0) << "e_k outside rho";
+        EXPECT_EQ(r.e_1 & ~r.e_k, 0) << "e_1 outside e_k";
+        if (!r.u_off) {
+          EXPECT_EQ(r.e_k, 0);
+        }
+        if (c == 0) {
+          EXPECT_NE(r.rho, 0) << "context 0's empty quad is the MEL's";
+        }
+        for (const CxtVlcRow& s : in_context)
+          if (&s != &r && s.length >= r.length) {
+            EXPECT_NE(s.codeword & ((1 << r.length) - 1), r.codeword) << "a codeword prefixes another in context " << c;
+          }
+      }
+      EXPECT_DOUBLE_EQ(kraft, 1.0) << "context " << c;
+    }
+  }
+}
+
+TEST(HtBlock, EveryShapeAndBitPlaneCountDecodesExactly) {
+  std::mt19937 rng(20261201);
+  for (const auto& [w, h] : all_shapes())
+    for (int planes = 0; planes <= 31; ++planes) {
+      const auto block = random_block(rng, w, h, planes);
+      check_round_trip(block, w, h, planes, 0, std::to_string(w) + "x" + std::to_string(h) + ", " + std::to_string(planes) + " planes");
+      if (HasFailure()) return;
+    }
+}
+
+TEST(HtBlock, CleanupOnAHigherPlaneCodesTheMagnitudesAboveIt) {
+  std::mt19937 rng(7);
+  for (const auto& [w, h] : {std::pair{64, 64}, {32, 16}, {7, 9}, {1024, 4}, {4, 1024}})
+    for (int planes = 1; planes <= 31; planes += 3)
+      for (int p : {1, 2, 5, planes - 1, planes, planes + 2}) {
+        if (p < 0 || p > 30) continue;
+        const auto block = random_block(rng, w, h, planes);
+        check_round_trip(block, w, h, planes, p,
+                         std::to_string(w) + "x" + std::to_string(h) + ", " + std::to_string(planes) + " planes, p " + std::to_string(p));
+        if (HasFailure()) return;
+      }
+}
+
+TEST(HtBlock, SparseAndDenseExtremes) {
+  // All-significant blocks of one large value (every quad at the U-VLC extension), lone samples
+  // in long zero runs (the MEL at its highest state), and a checkerboard.
+  for (std::int32_t v : {1, -1, 2, 3, 1 << 20, -(1 << 30), 0x7FFFFFFF}) {
+    std::vector<std::int32_t> full(4096, v);
+    check_round_trip(full, 64, 64, std::bit_width(static_cast<std::uint32_t>(v < 0 ? -static_cast<std::int64_t>(v) : v)), 0, "constant " + std::to_string(v));
+  }
+  std::vector<std::int32_t> lone(4096, 0);
+  lone[4095] = -5;
+  lone[2000] = 9;
+  check_round_trip(lone, 64, 64, 4, 0, "two lone samples");
+  std::vector<std::int32_t> board(4096);
+  for (int i = 0; i < 4096; ++i) board[static_cast<std::size_t>(i)] = ((i / 64 + i) % 2) ? 100 + i % 7 : 0;
+  check_round_trip(board, 64, 64, 7, 0, "checkerboard");
+}
+
+TEST(HtBlock, FloatAndIntegerBlocksInPlaceMatchTheSpanCoder) {
+  std::mt19937 rng(3);
+  const int w = 20, h = 12, stride = 33;
+  std::vector<std::int32_t> plane(static_cast<std::size_t>(stride * h));
+  std::vector<float> fplane(plane.size());
+  for (std::size_t i = 0; i < plane.size(); ++i) {
+    plane[i] = static_cast<std::int32_t>(rng() % 2001) - 1000;
+    fplane[i] = static_cast<float>(plane[i]) * 0.37f;
+  }
+  std::vector<std::int32_t> packed;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) packed.push_back(plane[static_cast<std::size_t>(y * stride + x)]);
+  const auto a = codec::ht::encode_ht_block(codec::t1::IntegerBlock{plane.data(), stride, w, h}, 12);
+  const auto b = codec::ht::encode_ht_block(packed, w, h, 12);
+  EXPECT_EQ(a.data, b.data);
+  const auto f = codec::ht::encode_ht_block(codec::t1::FloatBlock{fplane.data(), stride, w, h, 1 / 0.37f}, 12);
+  ASSERT_EQ(f.passes.size(), 1u);
+  EXPECT_GT(f.passes[0].distortion_decrease, 0.9 * f.energy);
+  EXPECT_LE(f.passes[0].distortion_decrease, f.energy);
+}
+
+TEST(HtBlock, RejectsWhatTheStandardDoesNot) {
+  std::vector<std::int32_t> big(4097, 1);
+  EXPECT_THROW(codec::ht::encode_ht_block(big, 4097, 1, 5), std::invalid_argument);
+  std::vector<std::int32_t> small(4, 64);
+  EXPECT_THROW(codec::ht::encode_ht_block(small, 2, 2, 5), std::invalid_argument);  // 7 planes > Mb
+  EXPECT_THROW(codec::ht::encode_ht_block(small, 2, 2, 8, 8), std::invalid_argument);
+}
+
+}  // namespace
