@@ -3,7 +3,8 @@
 // The two CxtVLC tables of ITU-T T.814 (06/2019) | ISO/IEC 15444-15:2019, Annex C: the rows as the
 // standard prints them, transcribed as data (each row: c_q, rho_q, u_off_q, e_k, e_1, codeword, length;
 // the codeword's least significant bit is the first bit in the VLC bit-stream). They are facts of the
-// standard, copied as data from a public plain-text transcription of Annex C, not from any codec's
+// standard, copied as data from a public plain-text transcription of Annex C (T814CxtVlc.txt in the
+// MIT-licensed repository glennawatson/PdfViewerLite), not from any codec's
 // source. ht_block_test checks that each context's codewords form a complete prefix code (Kraft
 // sum 1) and that every EMB pattern lies inside its significance pattern, which a transcription
 // slip would almost surely break; the decoders in j2k_ht_test check the rest.
