@@ -1,6 +1,6 @@
 // Highway's foreach_target re-includes this file once per SIMD target.
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "src/t1/block_loading_simd.cpp"
+#define HWY_TARGET_INCLUDE "src/block_loading_simd.cpp"
 #include <hwy/foreach_target.h>  // must precede highway.h
 #include <hwy/highway.h>
 
