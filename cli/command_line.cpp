@@ -6,7 +6,7 @@
 #include <string>
 
 #include "dwt/kernel.h"
-#include "one_line.h"
+#include "base/one_line.h"
 
 namespace dwtool {
 
@@ -59,7 +59,7 @@ ParsedCommandLine parse_command_line(int argc, char** argv) {
     return {std::nullopt, std::nullopt, app.exit(e)};  // --help
   } catch (const CLI::ParseError& e) {
     // CLI11's own report spans two lines; dwtool's contract is one.
-    std::cerr << "dwtool: " << one_line(e.what()) << " (see --help)\n";
+    std::cerr << "dwtool: " << base::one_line(e.what()) << " (see --help)\n";
     return {std::nullopt, std::nullopt, kUsageExitCode};
   }
   for (std::size_t i = 0; i < app_commands.size(); ++i) {

@@ -13,7 +13,7 @@
 #include <iostream>
 
 #include "command_line.h"
-#include "one_line.h"
+#include "base/one_line.h"
 #include "request.h"
 #include "transform.h"
 
@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
     dwtool::run(dwtool::resolve(*parsed.options));
     return 0;
   } catch (const std::exception& e) {
-    std::cerr << "dwtool: " << dwtool::one_line(e.what()) << '\n';
+    std::cerr << "dwtool: " << base::one_line(e.what()) << '\n';
   } catch (...) {
     // Nothing may escape main: an uncaught exception would abort with a multi-line report.
     std::cerr << "dwtool: unexpected error of unknown type\n";

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "imageio/read.h"
-#include "one_line.h"
+#include "base/one_line.h"
 #include "psnr.h"
 #include "quiet_stderr.h"
 
@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "imgpsnr: %s\n", cli::one_line(e.what()).c_str());
+    std::fprintf(stderr, "imgpsnr: %s\n", base::one_line(e.what()).c_str());
     return 2;
   }
 
@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
                   number(r.channel_mse[c], "%.6g").c_str());
     std::printf("all: PSNR %s dB, MSE %s\n", number(r.all_db, "%.4f").c_str(), number(r.all_mse, "%.6g").c_str());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "imgpsnr: %s\n", cli::one_line(e.what()).c_str());
+    std::fprintf(stderr, "imgpsnr: %s\n", base::one_line(e.what()).c_str());
     return 1;
   }
   return 0;

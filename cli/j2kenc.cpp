@@ -16,7 +16,7 @@
 #include "gpuj2k/encoder.h"
 #include "imageio/atomic_write.h"
 #include "number_pairs.h"
-#include "one_line.h"
+#include "base/one_line.h"
 #include "quiet_stderr.h"
 
 namespace {
@@ -236,7 +236,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "j2kenc: %s\n", cli::one_line(e.what()).c_str());
+    std::fprintf(stderr, "j2kenc: %s\n", base::one_line(e.what()).c_str());
     return 2;
   }
 
@@ -325,7 +325,7 @@ int main(int argc, char** argv) {
                    8.0 * static_cast<double>(bytes.size()) / (static_cast<double>(report.width) * report.height), ms,
                    report.dwt_backend.c_str(), report.dwt_reason.c_str());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "j2kenc: %s\n", cli::one_line(e.what()).c_str());
+    std::fprintf(stderr, "j2kenc: %s\n", base::one_line(e.what()).c_str());
     return 1;
   }
   return 0;

@@ -36,7 +36,6 @@ target_sources(gpuj2k_performer PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/src/espeak_tts.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/espeak_visemes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/speech_visemes.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/src/atomic_replace.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/wav.cpp)
 # PRIVATE: no espeak-ng type appears in a performer header, so nothing that uses the performer
 # compiles against espeak-ng; it is only linked.

@@ -77,7 +77,7 @@ void single_sample(const AxisPass& p, dwt::PlaneSpan<T> plane, bool inverse) {
 // there, and the interior copied out contiguously: low half then high half (forward), or
 // re-interleaved (inverse).
 template <class T>
-void run_rows(const Layout& L, const AxisPass& p, dwt::PlaneSpan<T> plane, ThreadPool& pool, bool inverse,
+void run_rows(const Layout& L, const AxisPass& p, dwt::PlaneSpan<T> plane, base::ThreadPool& pool, bool inverse,
               const std::vector<int>& map) {
   const int total = L.n + 2 * L.pad;
   const int first_low = (L.parity - L.pad) & 1 ? 1 : 0;  // extended position 0 is low iff its class is 0
@@ -115,7 +115,7 @@ void run_rows(const Layout& L, const AxisPass& p, dwt::PlaneSpan<T> plane, Threa
 }
 
 template <class T>
-void run(const AxisPass& p, dwt::PlaneSpan<T> plane, ThreadPool& pool, bool inverse) {
+void run(const AxisPass& p, dwt::PlaneSpan<T> plane, base::ThreadPool& pool, bool inverse) {
   const Layout L = layout_of(p);
   if (L.n == 0 || L.lanes == 0) return;
   if (L.n == 1) return single_sample(p, plane, inverse);
@@ -169,17 +169,17 @@ void run(const AxisPass& p, dwt::PlaneSpan<T> plane, ThreadPool& pool, bool inve
 }  // namespace
 
 template <class T>
-void run_forward(const AxisPass& pass, dwt::PlaneSpan<T> plane, ThreadPool& pool) {
+void run_forward(const AxisPass& pass, dwt::PlaneSpan<T> plane, base::ThreadPool& pool) {
   run(pass, plane, pool, false);
 }
 template <class T>
-void run_inverse(const AxisPass& pass, dwt::PlaneSpan<T> plane, ThreadPool& pool) {
+void run_inverse(const AxisPass& pass, dwt::PlaneSpan<T> plane, base::ThreadPool& pool) {
   run(pass, plane, pool, true);
 }
 
-template void run_forward<float>(const AxisPass&, dwt::PlaneSpan<float>, ThreadPool&);
-template void run_inverse<float>(const AxisPass&, dwt::PlaneSpan<float>, ThreadPool&);
-template void run_forward<std::int32_t>(const AxisPass&, dwt::PlaneSpan<std::int32_t>, ThreadPool&);
-template void run_inverse<std::int32_t>(const AxisPass&, dwt::PlaneSpan<std::int32_t>, ThreadPool&);
+template void run_forward<float>(const AxisPass&, dwt::PlaneSpan<float>, base::ThreadPool&);
+template void run_inverse<float>(const AxisPass&, dwt::PlaneSpan<float>, base::ThreadPool&);
+template void run_forward<std::int32_t>(const AxisPass&, dwt::PlaneSpan<std::int32_t>, base::ThreadPool&);
+template void run_inverse<std::int32_t>(const AxisPass&, dwt::PlaneSpan<std::int32_t>, base::ThreadPool&);
 
 }  // namespace dwt_cpu

@@ -3,7 +3,7 @@
 #include "dwt/geometry.h"
 #include "dwt/kernel.h"
 #include "dwt/plane.h"
-#include "dwt_cpu/thread_pool.h"
+#include "base/thread_pool.h"
 
 namespace dwt_cpu {
 
@@ -22,8 +22,8 @@ struct AxisPass {
 };
 
 template <class T>
-void run_forward(const AxisPass& pass, dwt::PlaneSpan<T> plane, ThreadPool& pool);
+void run_forward(const AxisPass& pass, dwt::PlaneSpan<T> plane, base::ThreadPool& pool);
 template <class T>
-void run_inverse(const AxisPass& pass, dwt::PlaneSpan<T> plane, ThreadPool& pool);
+void run_inverse(const AxisPass& pass, dwt::PlaneSpan<T> plane, base::ThreadPool& pool);
 
 }  // namespace dwt_cpu

@@ -9,9 +9,9 @@
 
 namespace dwt_cpu {
 
-CpuBackend::CpuBackend(int threads) : owned_pool_(std::make_unique<ThreadPool>(threads)), pool_(owned_pool_.get()) {}
+CpuBackend::CpuBackend(int threads) : owned_pool_(std::make_unique<base::ThreadPool>(threads)), pool_(owned_pool_.get()) {}
 
-CpuBackend::CpuBackend(ThreadPool& pool) : pool_(&pool) {}
+CpuBackend::CpuBackend(base::ThreadPool& pool) : pool_(&pool) {}
 
 std::string CpuBackend::name() const {
   return std::string("cpu lifting (") + simd::target_name() + ", " + std::to_string(pool_->size()) + " threads)";

@@ -2,17 +2,16 @@
 
 #include <sstream>
 
-#include "atomic_replace.h"
+#include "base/atomic_file.h"
 
 namespace performer::detail {
 
-// Built on replace_file_atomically, the one implementation of the temporary-then-rename dance: the
-// content is formatted in memory first (meshes of a few megabytes), so a failure while formatting
-// leaves no file at all.
+// The content is formatted in memory first (meshes of a few megabytes), so a failure while
+// formatting leaves no file at all; base writes it atomically.
 void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& fill) {
   std::ostringstream content(std::ios::binary);
   fill(content);
-  replace_file_atomically(path, content.view());
+  base::replace_file_atomically(path.string(), content.view());
 }
 
 }  // namespace performer::detail

@@ -4,18 +4,13 @@
 #include <fstream>
 #include <string>
 
+#include "base/one_line.h"
 #include "performer/gltf_skin.h"
 
 namespace performer::detail {
 
 namespace {
 
-std::string one_line(std::string text) {
-  for (char& c : text)
-    if (c == '\n' || c == '\r') c = ' ';
-  while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.pop_back();
-  return text;
-}
 
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
   return true;
@@ -38,7 +33,7 @@ tinygltf::Model load_gltf_model(const std::filesystem::path& path) {
   std::string err, warn;
   const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file)
                          : loader.LoadASCIIFromFile(&model, &err, &warn, file);
-  if (!ok) throw GltfError(file, "not a readable glTF 2.0 file: " + (err.empty() ? std::string("unknown error") : one_line(err)));
+  if (!ok) throw GltfError(file, "not a readable glTF 2.0 file: " + (err.empty() ? std::string("unknown error") : base::one_line(err)));
   return model;
 }
 

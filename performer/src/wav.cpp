@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "atomic_replace.h"
+#include "base/atomic_file.h"
 
 namespace performer {
 
@@ -106,7 +106,7 @@ void write_wav(const std::filesystem::path& file, int sample_rate, std::span<con
   if (sample_rate <= 0) throw std::invalid_argument("WAV sample rate " + std::to_string(sample_rate) + " is not positive");
   if (samples.size() * 2 > kMaxDataBytes)
     throw std::invalid_argument("WAV cannot hold " + std::to_string(samples.size()) + " samples (32-bit sizes)");
-  detail::replace_file_atomically(file, encode_wav(sample_rate, samples));
+  base::replace_file_atomically(file.string(), encode_wav(sample_rate, samples));
 }
 
 WavAudio read_wav(const std::filesystem::path& file) {

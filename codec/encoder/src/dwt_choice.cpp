@@ -127,7 +127,7 @@ void store_dwt_costs(const std::filesystem::path& cache, const std::string& key,
   if (ec) std::filesystem::remove(temporary, ec);
 }
 
-DwtChoice choose_dwt(const EncodeParams& params, double samples, dwt_cpu::ThreadPool& pool) {
+DwtChoice choose_dwt(const EncodeParams& params, double samples, base::ThreadPool& pool) {
   DwtChoice choice;
   auto use_cpu = [&](std::string reason) {
     auto cpu = std::make_unique<dwt_cpu::CpuBackend>(pool);

@@ -191,7 +191,7 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
   // Stage 0: the plan, one set of worker threads for every stage, and where the DWT runs.
   const auto setup_start = Clock::now();
   const CodingPlan plan = make_plan(image, params);
-  dwt_cpu::ThreadPool pool(params.threads);
+  base::ThreadPool pool(params.threads);
   report.threads = pool.size();
   double samples = 0;
   for (std::size_t c = 0; c < image.components.size(); ++c) samples += static_cast<double>(image.width) * image.height;

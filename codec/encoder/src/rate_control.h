@@ -8,7 +8,7 @@
 #include "codec/encoder/params.h"
 #include "codec/encoder/source_image.h"
 #include "tile_coder.h"
-#include "dwt_cpu/thread_pool.h"
+#include "base/thread_pool.h"
 
 namespace codec {
 
@@ -31,7 +31,7 @@ struct RateControlInputs {
   const EncodeParams& params;  // params.layers: the targets, one per layer (not empty)
   double samples = 0;          // over every component
   double peak = 255;           // largest sample value, for PSNR
-  dwt_cpu::ThreadPool& pool;
+  base::ThreadPool& pool;
 };
 
 // PCRD-opt over every block of every tile (one slope threshold per layer) against the layer

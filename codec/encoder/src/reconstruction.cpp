@@ -11,7 +11,7 @@ namespace codec {
 double rebuilt_squared_error(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params,
                              const std::vector<CodedTile>& tiles,
                              const std::vector<std::vector<std::vector<int>>>& passes, int layer,
-                             dwt::DwtBackend& dwt, dwt_cpu::ThreadPool& pool) {
+                             dwt::DwtBackend& dwt, base::ThreadPool& pool) {
   double total = 0;
   for (std::size_t t = 0; t < tiles.size(); ++t) {
     const CodedTile& coded = tiles[t];

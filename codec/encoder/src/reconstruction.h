@@ -15,6 +15,6 @@ namespace codec {
 double rebuilt_squared_error(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params,
                              const std::vector<CodedTile>& tiles,
                              const std::vector<std::vector<std::vector<int>>>& passes, int layer,
-                             dwt::DwtBackend& dwt, dwt_cpu::ThreadPool& pool);
+                             dwt::DwtBackend& dwt, base::ThreadPool& pool);
 
 }  // namespace codec

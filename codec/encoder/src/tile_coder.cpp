@@ -135,7 +135,7 @@ constexpr std::size_t kRowsPerItem = 16;
 
 // Calls rows(y0, y1) for consecutive chunks of [0, height) on the pool.
 template <class Rows>
-void for_row_chunks(dwt_cpu::ThreadPool& pool, std::size_t height, Rows&& rows) {
+void for_row_chunks(base::ThreadPool& pool, std::size_t height, Rows&& rows) {
   pool.parallel_for((height + kRowsPerItem - 1) / kRowsPerItem, [&](std::size_t item) {
     rows(item * kRowsPerItem, std::min(height, (item + 1) * kRowsPerItem));
   });
@@ -175,7 +175,7 @@ void release_rows(SourceImage& image, std::size_t component, std::size_t y0, std
 }
 
 TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan, const Tile& tile,
-                            bool lossless, dwt_cpu::ThreadPool& pool) {
+                            bool lossless, base::ThreadPool& pool) {
   const std::size_t nc = tile.components.size();
   TilePlanes out;
   (lossless ? out.integers.resize(nc) : out.floats.resize(nc));
@@ -474,7 +474,7 @@ t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const E
 
 CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan, const EncodeParams& params,
                     int tile_index,
-                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool, StageTimes& times,
+                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, base::ThreadPool& pool, StageTimes& times,
                     Tier1Target target, std::size_t progress_base, std::size_t progress_total) {
   auto clock = Clock::now();
   CodedTile coded;

@@ -11,7 +11,7 @@
 #include "codec/structure/tile.h"
 #include "codec/t1/block_encoder.h"
 #include "dwt/backend.h"
-#include "dwt_cpu/thread_pool.h"
+#include "base/thread_pool.h"
 #include "imageio/plane_memory.h"
 
 namespace codec {
@@ -112,7 +112,7 @@ struct Tier1Target {
 // covering it whole then takes its planes instead of copying them. Null otherwise.
 CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan, const EncodeParams& params,
                     int tile_index,
-                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, dwt_cpu::ThreadPool& pool, StageTimes& times,
+                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, base::ThreadPool& pool, StageTimes& times,
                     Tier1Target target = {}, std::size_t progress_base = 0, std::size_t progress_total = 0);
 
 // Tier-1 of one block of a coded tile, from its kept coefficients.

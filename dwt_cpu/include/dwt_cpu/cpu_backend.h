@@ -2,7 +2,7 @@
 #include <memory>
 
 #include "dwt/backend.h"
-#include "dwt_cpu/thread_pool.h"
+#include "base/thread_pool.h"
 
 namespace dwt_cpu {
 
@@ -14,7 +14,7 @@ class CpuBackend final : public dwt::DwtBackend {
   explicit CpuBackend(int threads = 0);  // 0: one per hardware thread
   // Runs on the caller's pool (which must outlive the backend), so that one program keeps one set
   // of worker threads for every stage.
-  explicit CpuBackend(ThreadPool& pool);
+  explicit CpuBackend(base::ThreadPool& pool);
 
   std::string name() const override;
   bool supports(dwt::KernelId kernel) const override;
@@ -29,8 +29,8 @@ class CpuBackend final : public dwt::DwtBackend {
   template <class T>
   void transform(dwt::PlaneSpan<T> plane, const dwt::DwtParams& params, bool inverse);
 
-  std::unique_ptr<ThreadPool> owned_pool_;
-  ThreadPool* pool_;
+  std::unique_ptr<base::ThreadPool> owned_pool_;
+  base::ThreadPool* pool_;
 };
 
 }  // namespace dwt_cpu

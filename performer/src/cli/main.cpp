@@ -18,6 +18,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/one_line.h"
 #include "avatar.h"
 #include "face.h"
 #include "info.h"
@@ -30,13 +31,6 @@
 
 namespace {
 
-// CLI11 messages may span lines; the contract is one line.
-std::string one_line(std::string text) {
-  for (char& c : text)
-    if (c == '\n' || c == '\r') c = ' ';
-  while (!text.empty() && text.back() == ' ') text.pop_back();
-  return text;
-}
 
 // The lip-sync options `visemes` takes.
 void add_lip_sync_options(CLI::App* app, performer::cli::LipSyncSource& s) {
@@ -153,7 +147,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "performer: %s\n", one_line(e.what()).c_str());
+    std::fprintf(stderr, "performer: %s\n", base::one_line(e.what()).c_str());
     return 2;
   }
 
@@ -218,7 +212,7 @@ int main(int argc, char** argv) {
       performer::cli::run_avatar(avatar_command, stderr);
     }
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "performer: %s\n", one_line(e.what()).c_str());
+    std::fprintf(stderr, "performer: %s\n", base::one_line(e.what()).c_str());
     return 1;
   }
   return 0;

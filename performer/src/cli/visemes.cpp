@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "../atomic_replace.h"
+#include "base/atomic_file.h"
 #include "performer/espeak_tts.h"
 #include "performer/espeak_visemes.h"
 #include "performer/phoneme_keyframes.h"
@@ -63,7 +63,7 @@ void write_track(const WeightTrack& track, const std::filesystem::path& out) {
     write_weights_json(text, track);
   else
     write_weights_csv(text, track);
-  detail::replace_file_atomically(out, text.str());
+  base::replace_file_atomically(out, text.str());
 }
 
 }  // namespace performer::cli

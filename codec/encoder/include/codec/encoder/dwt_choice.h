@@ -7,7 +7,7 @@
 
 #include "codec/encoder/params.h"
 #include "dwt/backend.h"
-#include "dwt_cpu/thread_pool.h"
+#include "base/thread_pool.h"
 
 namespace dwt_gpu {
 class GpuBackend;
@@ -51,6 +51,6 @@ struct DwtChoice {
 // comparisons), failing if there is none. --dwt auto: never a software rasteriser; on a hardware GPU
 // only when the measured costs say it is faster for `samples`. The reversible 5/3 always runs on the
 // CPU, so lossless encodes never make a context. CPU backends run on `pool`.
-DwtChoice choose_dwt(const EncodeParams& params, double samples, dwt_cpu::ThreadPool& pool);
+DwtChoice choose_dwt(const EncodeParams& params, double samples, base::ThreadPool& pool);
 
 }  // namespace codec

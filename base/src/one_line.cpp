@@ -1,14 +1,10 @@
-// The tools report every failure as exactly one line, whatever the library messages they relay contain.
-#pragma once
+#include "base/one_line.h"
 
-#include <string>
-#include <string_view>
+namespace base {
 
-namespace cli {
-
-// Folds line breaks (and the blanks around them) into "; " and drops trailing ones.
-inline std::string one_line(std::string_view text) {
+std::string one_line(std::string_view text) {
   std::string out;
+  out.reserve(text.size());
   std::size_t i = 0;
   while (i < text.size()) {
     const char ch = text[i];
@@ -24,8 +20,4 @@ inline std::string one_line(std::string_view text) {
   return out;
 }
 
-}  // namespace cli
-
-namespace dwtool {
-using cli::one_line;
-}  // namespace dwtool
+}  // namespace base

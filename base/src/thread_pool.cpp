@@ -1,6 +1,8 @@
-#include "dwt_cpu/thread_pool.h"
+#include "base/thread_pool.h"
 
-namespace dwt_cpu {
+#include <algorithm>
+
+namespace base {
 
 ThreadPool::ThreadPool(int threads) {
   if (threads <= 0) threads = static_cast<int>(std::thread::hardware_concurrency());
@@ -71,4 +73,22 @@ void ThreadPool::parallel_for(std::size_t count, const std::function<void(std::s
   if (error_) std::rethrow_exception(error_);
 }
 
-}  // namespace dwt_cpu
+void parallel_for(std::size_t count, std::size_t min_chunk, unsigned threads,
+                  const std::function<void(std::size_t, std::size_t)>& fn) {
+  if (count == 0) return;
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  min_chunk = std::max<std::size_t>(1, min_chunk);
+  const std::size_t chunks = std::min<std::size_t>(threads, (count + min_chunk - 1) / min_chunk);
+  if (chunks <= 1) {
+    fn(0, count);
+    return;
+  }
+  const std::size_t per_chunk = (count + chunks - 1) / chunks;
+  ThreadPool pool(static_cast<int>(chunks));
+  pool.parallel_for((count + per_chunk - 1) / per_chunk, [&](std::size_t chunk) {
+    const std::size_t begin = chunk * per_chunk;
+    fn(begin, std::min(count, begin + per_chunk));
+  });
+}
+
+}  // namespace base

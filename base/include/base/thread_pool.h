@@ -8,7 +8,7 @@
 #include <thread>
 #include <vector>
 
-namespace dwt_cpu {
+namespace base {
 
 // A fixed set of worker threads that run one parallel_for at a time. The calling thread works too,
 // so a pool of size 1 runs everything inline.
@@ -41,4 +41,11 @@ class ThreadPool {
   std::exception_ptr error_;
 };
 
-}  // namespace dwt_cpu
+// Calls fn(begin, end) on disjoint ranges covering [0, count), each at least min_chunk long (but
+// the last), on up to `threads` threads (0: one per hardware thread), on a pool made for the call:
+// for jobs that run now and then (a frame's skinning), where keeping threads would cost more. The
+// first exception thrown by any range is rethrown after all have finished.
+void parallel_for(std::size_t count, std::size_t min_chunk, unsigned threads,
+                  const std::function<void(std::size_t begin, std::size_t end)>& fn);
+
+}  // namespace base
