@@ -17,6 +17,8 @@
 #include "imageio/write.h"
 #include "support/option_matrix.h"
 #include "support/scratch_dir.h"
+#include "support/shared_assets.h"
+#include "imageio/read.h"
 #include "testimages/patterns.h"
 #include "testimages/prng.h"
 
@@ -154,14 +156,20 @@ struct Pgx {
   std::vector<std::int32_t> samples;
 };
 
+// PGX: "PG ML|LM [+|-]depth width height" (the sign may be absent or touch the depth), one line.
 Pgx read_pgx(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
-  std::string magic, endian, sign;
+  std::string header;
+  std::getline(in, header);
+  std::istringstream fields(header);
+  std::string magic, endian;
+  fields >> magic >> endian >> std::ws;
+  std::string sign = "+";
+  if (fields.peek() == '+' || fields.peek() == '-') sign = std::string(1, static_cast<char>(fields.get()));
   int depth = 0;
   Pgx p;
-  in >> magic >> endian >> sign >> depth >> p.width >> p.height;
-  in.get();
-  if (!in || magic != "PG") throw std::runtime_error("bad PGX " + path.string());
+  fields >> depth >> p.width >> p.height;
+  if (!fields || magic != "PG") throw std::runtime_error("bad PGX " + path.string());
   const int bytes = depth <= 8 ? 1 : (depth <= 16 ? 2 : 4);
   const bool big = endian == "ML";
   for (long i = 0; i < static_cast<long>(p.width) * p.height; ++i) {
@@ -311,6 +319,73 @@ TEST_F(J2kDecoderVsOpenJpeg, ReduceAndLayersMatchOpjDecompress) {
       o.max_layers = layers;
       expect_like_opj(codec::decode_file((dir / "opj.j2k").string(), o), opj_decode(dir, dir / "opj.j2k", "-l " + std::to_string(layers)),
                       tolerance, opts + " layers " + std::to_string(layers));
+    }
+  }
+}
+
+// ---- The T.803 conformance streams (../shared/conformance) ----
+
+// Class 1 limits per component: the largest peak error and mean squared error T.803 allows
+// against the reference decoded image (0, 0: exact). `reduce` is the resolution the reference
+// was made at. Streams whose features are not implemented yet must fail with a message naming
+// them, so that this table is updated when they are.
+struct ConformanceCase {
+  const char* stream;
+  int reduce;
+  std::vector<int> peak;
+  std::vector<double> mse;
+  const char* unsupported = nullptr;  // the feature the decoder refuses, for now
+};
+
+TEST(J2kDecoderConformance, ClassOneStreamsWithinLimits) {
+  const fs::path root = test_support::shared_dir() / "conformance";
+  REQUIRE_SHARED_FILE(root / "streams" / "p0_01.j2k");
+  const ConformanceCase cases[] = {
+      {"p0_01", 0, {0}, {0}},
+      {"p0_02", 0, {0}, {0}},
+      {"p0_03", 0, {0}, {0}, "POC"},
+      {"p0_04", 0, {5, 4, 6}, {0.776, 0.626, 1.07}},
+      {"p0_05", 0, {2, 2, 2, 0}, {0.302, 0.307, 0.269, 0}},
+      {"p0_06", 0, {635, 403, 378, 0}, {11287, 6124, 3968, 0}},
+      {"p0_08", 1, {0, 0, 0}, {0, 0, 0}},
+      {"p0_09", 0, {0}, {0}},
+      {"p0_10", 0, {0, 0, 0}, {0, 0, 0}},
+      {"p1_01", 0, {0}, {0}},
+      {"p1_02", 0, {0}, {0}, "PPT"},
+      {"p1_03", 0, {0}, {0}, "PPM"},
+      {"p1_04", 0, {624}, {3080}},
+  };
+  for (const ConformanceCase& c : cases) {
+    SCOPED_TRACE(c.stream);
+    const fs::path stream = root / "streams" / (std::string(c.stream) + ".j2k");
+    if (!fs::exists(stream)) continue;  // p0_07 is not distributed; others may be missing too
+    auto o = options();
+    o.reduce = c.reduce;
+    if (c.unsupported) {
+      try {
+        (void)codec::decode_file(stream.string(), o);
+        ADD_FAILURE() << c.stream << " decodes now: give it its limits";
+      } catch (const codec::DecodeError& e) {
+        EXPECT_NE(std::string(e.what()).find(c.unsupported), std::string::npos) << e.what();
+      }
+      continue;
+    }
+    const codec::DecodedImage img = codec::decode_file(stream.string(), o);
+    ASSERT_EQ(img.components.size(), c.peak.size());
+    for (std::size_t k = 0; k < c.peak.size(); ++k) {
+      const Pgx ref = read_pgx(root / "reference" / ("c1" + std::string(c.stream) + "_" + std::to_string(k) + ".pgx"));
+      const auto& got = img.components[k];
+      ASSERT_EQ(got.width, ref.width) << "component " << k;
+      ASSERT_EQ(got.height, ref.height) << "component " << k;
+      int peak = 0;
+      double sum = 0;
+      for (std::size_t i = 0; i < ref.samples.size(); ++i) {
+        const int d = std::abs(got.samples[i] - ref.samples[i]);
+        peak = std::max(peak, d);
+        sum += static_cast<double>(d) * d;
+      }
+      EXPECT_LE(peak, c.peak[k]) << "component " << k;
+      EXPECT_LE(sum / static_cast<double>(ref.samples.size()), c.mse[k]) << "component " << k;
     }
   }
 }
