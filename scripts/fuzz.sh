@@ -1,19 +1,22 @@
 #!/usr/bin/env bash
 # Fuzzes the file readers for a while each: PFM and PNM (imageio), BVH and Rhubarb Lip Sync
-# (performer). Builds the libFuzzer targets with Clang in build-fuzz/ (ASan + UBSan), seeds each
-# with a small valid file written here, and runs it for FUZZ_SECONDS (default 30). A crash, a
-# sanitizer report or a broken promise of a reader stops the script with libFuzzer's report and
-# the input that caused it (build-fuzz/crash-*).
+# (performer), and the JPEG 2000 decoder (codestreams and JP2 files, seeded with small encodes of
+# our own and the conformance streams when ../shared/conformance is there). Builds the libFuzzer
+# targets with Clang in build-fuzz/ (ASan + UBSan), seeds each with small valid files written
+# here, and runs it for FUZZ_SECONDS (default 30). A crash, a sanitizer report or a broken promise
+# of a reader stops the script with libFuzzer's report and the input that caused it
+# (build-fuzz/crash-*).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${FUZZ_SECONDS:-30}"
 dir=build-fuzz
 CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGPUJ2K_FUZZ=ON >/dev/null
-cmake --build "$dir" --parallel "$(nproc)" --target pfm_fuzz pnm_fuzz bvh_fuzz rhubarb_fuzz
+cmake --build "$dir" --parallel "$(nproc)" --target pfm_fuzz pnm_fuzz bvh_fuzz rhubarb_fuzz \
+  codestream_fuzz j2kenc gentestimage
 
 corpus="$dir/corpus"
 rm -rf "$corpus"
-mkdir -p "$corpus"/{pfm,pnm,bvh,rhubarb}
+mkdir -p "$corpus"/{pfm,pnm,bvh,rhubarb,codestream}
 printf 'Pf\n2 1\n-1.0\n\x00\x00\x80\x3f\x00\x00\x00\x40' > "$corpus/pfm/grey.pfm"
 printf 'PF\n1 1\n1.0\n\x3f\x80\x00\x00\x40\x00\x00\x00\x40\x40\x00\x00' > "$corpus/pfm/rgb_big_endian.pfm"
 printf 'P2\n2 2\n# comment\n65535\n0 1 65534 65535\n' > "$corpus/pnm/plain16.pgm"
@@ -46,10 +49,26 @@ printf '\x000.00\tX\n0.05\tB\n0.20\tA\n' > "$corpus/rhubarb/cues.tsv"
 printf '\x01{"metadata":{"duration":0.3},"mouthCues":[{"start":0.00,"end":0.05,"value":"X"},{"start":0.05,"end":0.30,"value":"B"}]}' \
   > "$corpus/rhubarb/cues.json"
 
-for reader in pfm pnm bvh rhubarb; do
+# Small encodes of our own: lossless and lossy, tiles, precincts, SOP/EPH, every mode switch, layers, JP2.
+seed_image="$dir/corpus/seed.ppm"
+"$dir/bin/gentestimage" --pattern mix --size 24x17 --channels 3 -o "$seed_image"
+enc() { "$dir/bin/j2kenc" -i "$seed_image" -q "$@"; }
+enc -o "$corpus/codestream/lossless.j2k" --lossless --levels 3
+enc -o "$corpus/codestream/tiles.j2k" --lossless --tile 16x8 --tile-origin 1,1 --origin 3,2 --levels 2 --order RPCL
+enc -o "$corpus/codestream/precincts.j2k" --lossless --precincts 8x8 --codeblock 4x4 --sop --eph --order PCRL --levels 2
+enc -o "$corpus/codestream/modes.j2k" --modes bypass,reset,termall,vcausal,pterm,segsym --codeblock 8x8 --levels 2
+enc -o "$corpus/codestream/layers.j2k" --rate 1,2,4 --order CPRL --levels 2
+enc -o "$corpus/codestream/file.jp2" --levels 1
+rm -f "$seed_image"
+# The conformance streams that are small enough to mutate quickly.
+if [ -d ../shared/conformance/streams ]; then
+  find ../shared/conformance/streams -type f -size -64k -exec cp {} "$corpus/codestream/" \;
+fi
+
+for reader in pfm pnm bvh rhubarb codestream; do
   echo "fuzzing the $reader reader for ${seconds} s"
   # -artifact_prefix keeps any crash input next to the build, where the report points.
-  (cd "$dir" && "bin/${reader}_fuzz" "corpus/$reader" -max_total_time="$seconds" -max_len=8192 \
+  (cd "$dir" && "bin/${reader}_fuzz" "corpus/$reader" -max_total_time="$seconds" -max_len="$([ "$reader" = codestream ] && echo 65536 || echo 8192)" \
     -artifact_prefix="crash-$reader-" -print_final_stats=1 2>&1 | grep -E "^(stat::number_of_executed_units|==|SUMMARY|ERROR|Done)" || true)
   # libFuzzer's exit status is lost in the pipe above; a crash leaves its input behind instead.
   if ls "$dir"/crash-"$reader"-* >/dev/null 2>&1; then

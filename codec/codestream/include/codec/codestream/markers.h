@@ -1,7 +1,8 @@
 #pragma once
 #include <cstdint>
 
-// Marker codes of the Part 1 codestream (T.800 Table A.2). Only those this encoder writes.
+// Marker codes of the Part 1 codestream (T.800 Table A.2): those this encoder writes, and the
+// others a decoder meets.
 namespace codec::cs::marker {
 
 inline constexpr std::uint16_t SOC = 0xFF4F;  // start of codestream
@@ -17,5 +18,15 @@ inline constexpr std::uint16_t SOP = 0xFF91;  // start of packet
 inline constexpr std::uint16_t EPH = 0xFF92;  // end of packet header
 inline constexpr std::uint16_t SOD = 0xFF93;  // start of data
 inline constexpr std::uint16_t EOC = 0xFFD9;  // end of codestream
+
+// Read by the decoder only.
+inline constexpr std::uint16_t TLM = 0xFF55;  // tile-part lengths
+inline constexpr std::uint16_t PLM = 0xFF57;  // packet lengths, main header
+inline constexpr std::uint16_t PLT = 0xFF58;  // packet lengths, tile-part header
+inline constexpr std::uint16_t RGN = 0xFF5E;  // region of interest
+inline constexpr std::uint16_t POC = 0xFF5F;  // progression order change
+inline constexpr std::uint16_t PPM = 0xFF60;  // packed packet headers, main header
+inline constexpr std::uint16_t PPT = 0xFF61;  // packed packet headers, tile-part header
+inline constexpr std::uint16_t CRG = 0xFF63;  // component registration
 
 }  // namespace codec::cs::marker

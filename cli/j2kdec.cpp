@@ -1,0 +1,127 @@
+// j2kdec: JPEG 2000 decoder. Reads a codestream (.j2k, .j2c, .jpc) or a JP2 file and writes PGX
+// (one file per component, NAME_0.pgx, NAME_1.pgx, ... as opj_decompress does), our PNM/PFM, or
+// anything OpenImageIO writes. Errors are one line "j2kdec: FILE: problem" on stderr, exit 1, and
+// no output file.
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "codec/decoder/decoder.h"
+#include "dwt_gpu/gpu_backend.h"
+#include "imageio/atomic_write.h"
+#include "imageio/error.h"
+#include "imageio/write.h"
+#include "base/one_line.h"
+
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return "";
+  std::string ext = path.substr(dot);
+  for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return ext;
+}
+
+// PGX as the conformance suite and opj_decompress use it: "PG ML +|- depth width height\n", then
+// big-endian samples of 1, 2 or 4 bytes.
+std::vector<std::uint8_t> pgx_bytes(const codec::DecodedComponent& c) {
+  const std::string header = "PG ML " + std::string(c.is_signed ? "-" : "+") + " " + std::to_string(c.precision) + " " +
+                             std::to_string(c.width) + " " + std::to_string(c.height) + "\n";
+  const int bytes = c.precision <= 8 ? 1 : (c.precision <= 16 ? 2 : 4);
+  std::vector<std::uint8_t> out(header.begin(), header.end());
+  out.reserve(out.size() + c.samples.size() * static_cast<std::size_t>(bytes));
+  for (std::int32_t v : c.samples) {
+    const auto u = static_cast<std::uint32_t>(v);
+    for (int b = bytes - 1; b >= 0; --b) out.push_back(static_cast<std::uint8_t>(u >> (8 * b)));
+  }
+  return out;
+}
+
+void write_pgx(const std::string& path, const codec::DecodedImage& img) {
+  const std::string stem = path.substr(0, path.size() - 4);
+  for (std::size_t c = 0; c < img.components.size(); ++c)
+    imageio::write_bytes_atomically(stem + "_" + std::to_string(c) + ".pgx", pgx_bytes(img.components[c]));
+}
+
+void write_other(const std::string& path, const codec::DecodedImage& img) {
+  const auto& c0 = img.components.at(0);
+  int channels = static_cast<int>(img.components.size());
+  for (int c = 1; c < channels; ++c) {
+    const auto& ci = img.components[static_cast<std::size_t>(c)];
+    if (ci.width != c0.width || ci.height != c0.height)
+      throw std::runtime_error("components of different sizes (subsampled) can only be written as PGX");
+    if (ci.precision != c0.precision || ci.is_signed != c0.is_signed)
+      throw std::runtime_error("components of different precisions can only be written as PGX");
+  }
+  if (c0.precision > 16) throw std::runtime_error("samples of more than 16 bits can only be written as PGX");
+  imageio::Image out;
+  out.width = c0.width;
+  out.height = c0.height;
+  out.channels = channels;
+  out.bits_per_sample = c0.precision;
+  out.is_signed = c0.is_signed;
+  out.pixels.resize(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) * static_cast<std::size_t>(channels));
+  for (int c = 0; c < channels; ++c) {
+    const auto& s = img.components[static_cast<std::size_t>(c)].samples;
+    for (std::size_t i = 0; i < s.size(); ++i) out.pixels[i * static_cast<std::size_t>(channels) + static_cast<std::size_t>(c)] = static_cast<float>(s[i]);
+  }
+  imageio::write_image(path, out);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"j2kdec: JPEG 2000 Part 1 decoder (codestreams and JP2 files)"};
+  std::string input, output, dwt = "cpu";
+  int reduce = 0, layers = 0, threads = 0;
+  double max_memory_mib = 2048;
+  bool quiet = false;
+  app.add_option("-i,--input", input, "codestream (.j2k, .j2c, .jpc) or JP2 file")->required();
+  app.add_option("-o,--output", output, "output image: .pgx (one file per component), .pgm/.ppm/.pnm, .pfm, or any OpenImageIO format")->required();
+  app.add_option("--reduce", reduce, "discard the R finest resolution levels")->check(CLI::Range(0, 32));
+  app.add_option("--layers", layers, "decode only the first L quality layers (0: all)")->check(CLI::NonNegativeNumber);
+  app.add_option("--dwt", dwt, "inverse 9/7 DWT on cpu or gpu (auto: cpu for now); the 5/3 runs on the CPU")
+      ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
+  app.add_option("--threads", threads, "CPU threads (0: one per hardware thread)")->check(CLI::NonNegativeNumber);
+  app.add_option("--max-memory", max_memory_mib, "refuse streams that need more than this many MiB")->check(CLI::PositiveNumber);
+  app.add_flag("-q,--quiet", quiet, "no warnings");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  const std::string ext = lower_extension(output);
+  try {
+    codec::DecodeOptions options;
+    options.reduce = reduce;
+    options.max_layers = layers;
+    options.threads = threads;
+    options.max_memory = static_cast<std::size_t>(max_memory_mib * 1048576.0);
+    std::unique_ptr<dwt_gpu::GpuBackend> gpu;
+    if (dwt == "gpu") {
+      gpu = std::make_unique<dwt_gpu::GpuBackend>();
+      options.irreversible_backend = gpu.get();
+    }
+    const codec::DecodedImage image = codec::decode_file(input, options);
+    if (!quiet)
+      for (const std::string& w : image.warnings) std::fprintf(stderr, "j2kdec: %s: warning: %s\n", input.c_str(), base::one_line(w).c_str());
+    try {
+      if (ext == ".pgx") write_pgx(output, image);
+      else write_other(output, image);
+    } catch (const imageio::IoError& e) {
+      std::fprintf(stderr, "j2kdec: %s\n", base::one_line(e.what()).c_str());
+      return 1;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "j2kdec: %s: %s\n", output.c_str(), base::one_line(e.what()).c_str());
+      return 1;
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "j2kdec: %s: %s\n", input.c_str(), base::one_line(e.what()).c_str());
+    return 1;
+  }
+  return 0;
+}

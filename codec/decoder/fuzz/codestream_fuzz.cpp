@@ -1,0 +1,24 @@
+// libFuzzer target for the decoder: any bytes, as a codestream or a JP2 file, must decode or give
+// a one-line DecodeError; never a crash, a hang, a sanitizer report or another exception. The
+// memory limit is kept small so that the fuzzer explores headers rather than allocating.
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <span>
+#include <string>
+
+#include "codec/decoder/decoder.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  codec::DecodeOptions options;
+  options.threads = 1;
+  options.max_memory = std::size_t{64} << 20;
+  try {
+    const codec::DecodedImage image = codec::decode(std::span<const std::uint8_t>(data, size), options);
+    for (const auto& c : image.components)
+      if (c.samples.size() != static_cast<std::size_t>(c.width) * static_cast<std::size_t>(c.height)) std::abort();
+  } catch (const codec::DecodeError& e) {
+    if (std::string(e.what()).find('\n') != std::string::npos) std::abort();  // the one-line promise
+  }
+  return 0;
+}

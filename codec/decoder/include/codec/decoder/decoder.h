@@ -1,0 +1,60 @@
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace dwt {
+class DwtBackend;
+}
+
+namespace codec {
+
+// Every decoder failure a malformed or unsupported stream causes: one line, no trailing newline,
+// naming the byte offset where the problem lies when there is one. Never a crash or a hang: every
+// length, count and size of the stream is checked before it is used or allocated.
+class DecodeError : public std::runtime_error {
+ public:
+  explicit DecodeError(const std::string& what) : std::runtime_error(what) {}
+};
+
+struct DecodeOptions {
+  int reduce = 0;          // discard this many of the finest resolution levels (opj_decompress -r)
+  int max_layers = 0;      // decode only the first max_layers quality layers; 0 = all
+  // Refuse streams whose image, tile structure or working buffers would need more than this.
+  std::size_t max_memory = std::size_t{2} << 30;
+  // The inverse DWT of irreversible (9/7) tile-components; null: the CPU lifting backend. The
+  // reversible 5/3 always runs on the CPU (exact integers).
+  dwt::DwtBackend* irreversible_backend = nullptr;
+  int threads = 0;  // CPU DWT threads; 0 = one per hardware thread
+};
+
+// One decoded component on its own sampling grid: the component's samples inside the image area,
+// i.e. [ceil(XOsiz/XRsiz), ceil(Xsiz/XRsiz)) x [ceil(YOsiz/YRsiz), ceil(Ysiz/YRsiz)) (T.800 B-12),
+// reduced by 2^reduce. Samples are the stream's integers: unsigned 0..2^precision-1 or signed.
+struct DecodedComponent {
+  int width = 0, height = 0;
+  int x0 = 0, y0 = 0;  // top-left on the component's (reduced) grid
+  int dx = 1, dy = 1;  // XRsiz, YRsiz
+  int precision = 8;   // 1..38 (the samples here are int32: decoding refuses more than 31 bits)
+  bool is_signed = false;
+  std::vector<std::int32_t> samples;  // row-major, width * height
+};
+
+struct DecodedImage {
+  std::int64_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // image area on the reference grid (reduced)
+  std::vector<DecodedComponent> components;
+  // Problems that did not stop the decode (a truncated stream, an unknown marker): one line each.
+  std::vector<std::string> warnings;
+  // JP2 files: the colour space the colr box names (16 sRGB, 17 greyscale, 18 sYCC), 0 if none.
+  int jp2_colour_space = 0;
+};
+
+// Decodes a JPEG 2000 codestream (SOC first) or a JP2 file (signature box first). Throws
+// DecodeError.
+DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& options = {});
+DecodedImage decode_file(const std::string& path, const DecodeOptions& options = {});
+
+}  // namespace codec

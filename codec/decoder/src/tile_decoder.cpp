@@ -1,0 +1,316 @@
+#include "tile_decoder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <variant>
+
+#include "block_decoder.h"
+#include "byte_reader.h"
+#include "codec/structure/error.h"
+#include "codec/tier2/progression.h"
+#include "dwt/error.h"
+#include "dwt/geometry.h"
+#include "packet_reader.h"
+
+namespace codec::dec {
+
+namespace {
+
+std::vector<ComponentSampling> sampling_of(const Siz& siz) {
+  std::vector<ComponentSampling> s;
+  for (const ComponentSize& c : siz.components) s.push_back(ComponentSampling{c.dx, c.dy});
+  return s;
+}
+
+std::vector<CodingStyle> styles_of(const TileParams& p) {
+  std::vector<CodingStyle> s;
+  for (const TileComponentParams& c : p.components)
+    s.push_back(CodingStyle{c.coding.levels, c.coding.xcb, c.coding.ycb, c.coding.precincts});
+  return s;
+}
+
+// E.1.1.1: the band's nominal dynamic range gain, log2 of 1, 2, 2, 4 for LL, HL, LH, HH.
+int band_gain(BandOrientation o) {
+  switch (o) {
+    case BandOrientation::LL: return 0;
+    case BandOrientation::HH: return 2;
+    default: return 1;
+  }
+}
+
+// The step size entry of a band (A.6.4: LL, then HL, LH, HH of each level from the coarsest), or
+// derived from LL's for scalar derived quantisation (E-5).
+StepSize step_of(const Quantization& q, int levels, const Subband& band) {
+  if (q.style == 1) {
+    const StepSize ll = q.steps[0];
+    return StepSize{ll.exponent - levels + band.level, ll.mantissa};
+  }
+  if (band.orientation == BandOrientation::LL) return q.steps[0];
+  const std::size_t index = 1 + 3 * static_cast<std::size_t>(levels - band.level) +
+                            static_cast<std::size_t>(static_cast<int>(band.orientation) - 1);
+  return q.steps[index];
+}
+
+// A tile-component's samples between the stages: int32 for the reversible path, float for 9/7.
+struct Plane {
+  Rect rect;  // on the (reduced) component grid
+  bool reversible = true;
+  std::vector<std::int32_t> ints;
+  std::vector<float> floats;
+  int width() const { return static_cast<int>(rect.width()); }
+  int height() const { return static_cast<int>(rect.height()); }
+};
+
+t2::ComponentGeometry geometry_of(const TileComponent& tc, int dx, int dy) {
+  t2::ComponentGeometry g;
+  g.dx = dx;
+  g.dy = dy;
+  for (const Resolution& r : tc.resolutions)
+    g.resolutions.push_back(t2::ResolutionGeometry{r.rect.x0, r.rect.y0, r.rect.x1, r.rect.y1, r.ppx, r.ppy,
+                                                   r.precincts_wide, r.precincts_high});
+  return g;
+}
+
+// Tier-1 and dequantisation of every code-block of a tile-component, into its plane in the Mallat
+// layout of the (reduced) inverse DWT.
+void decode_blocks(const TileComponent& tc, const TileComponentParams& params, const ComponentSize& size, int reduce,
+                   const std::vector<BlockState>& states, Plane& plane) {
+  const int kept_levels = tc.levels - reduce;
+  const auto geometry = dwt::decomposition(plane.width(), plane.height(), dwt::Origin{plane.rect.x0, plane.rect.y0}, kept_levels);
+  const t1::BlockStyle style = t1::BlockStyle::from_spcod(params.coding.block_style);
+  std::vector<std::int32_t> block;
+  for (int r = 0; r <= kept_levels; ++r) {
+    const Resolution& res = tc.resolutions[static_cast<std::size_t>(r)];
+    for (std::size_t bi = 0; bi < res.bands.size(); ++bi) {
+      const Subband& band = res.bands[bi];
+      if (band.rect.empty()) continue;
+      const dwt::LayoutRect layout =
+          r == 0 ? dwt::LayoutRect{0, 0, static_cast<int>(band.rect.width()), static_cast<int>(band.rect.height())}
+                 : dwt::band_rect(geometry, band.level - reduce, static_cast<dwt::Orientation>(band.orientation));
+      const StepSize step = step_of(params.quantization, tc.levels, band);
+      // E-2: Mb = G + epsilon_b - 1 magnitude bit-planes, plus the ROI shift (H.1).
+      const int mb = params.quantization.guard_bits + step.exponent - 1 + params.roi_shift;
+      const double delta = std::ldexp(1.0 + step.mantissa / 2048.0, size.precision + band_gain(band.orientation) - step.exponent);
+      const float half_delta = static_cast<float>(delta / 2);
+      const std::int32_t roi_threshold = params.roi_shift > 0 && params.roi_shift < 30 ? (std::int32_t{2} << params.roi_shift) : 0;
+      for (const Precinct& p : res.precincts)
+        for (const PrecinctBand& pb : p.bands) {
+          if (pb.band != static_cast<int>(bi)) continue;
+          for (const CodeBlock& cb : pb.blocks) {
+            const BlockState& st = states[cb.index];
+            if (st.kept_passes == 0) continue;
+            const int w = static_cast<int>(cb.rect.width()), h = static_cast<int>(cb.rect.height());
+            block.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
+            BlockCodewords cw{st.data, st.segments, st.kept_passes, mb - 1 - st.missing_msbs};
+            decode_code_block(cw, w, h, band.orientation, style, block);
+            const int ox = layout.x + static_cast<int>(cb.rect.x0 - band.rect.x0);
+            const int oy = layout.y + static_cast<int>(cb.rect.y0 - band.rect.y0);
+            for (int y = 0; y < h; ++y)
+              for (int x = 0; x < w; ++x) {
+                std::int32_t v = block[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)];
+                if (roi_threshold) {
+                  // H.2: coefficients at or above 2^s belong to the region and were scaled up by s.
+                  const std::int32_t m = v < 0 ? -v : v;
+                  if (m >= roi_threshold) v = v < 0 ? -(m >> params.roi_shift) : (m >> params.roi_shift);
+                }
+                const std::size_t at = static_cast<std::size_t>(oy + y) * static_cast<std::size_t>(plane.width()) +
+                                       static_cast<std::size_t>(ox + x);
+                if (plane.reversible) plane.ints[at] = v / 2;  // the half-step dropped: the exact integer
+                else plane.floats[at] = static_cast<float>(v) * half_delta;
+              }
+          }
+        }
+    }
+  }
+}
+
+void inverse_dwt(Plane& plane, int levels, const TileDecodeSetup& setup) {
+  if (levels <= 0 || plane.rect.empty()) return;
+  dwt::DwtParams p;
+  p.kernel = plane.reversible ? dwt::KernelId::Reversible53 : dwt::KernelId::Irreversible97;
+  p.levels = levels;
+  p.origin = dwt::Origin{plane.rect.x0, plane.rect.y0};
+  p.levels_may_exceed_size = true;
+  if (plane.reversible)
+    setup.reversible_backend->inverse(dwt::make_span(plane.ints.data(), plane.width(), plane.height()), p);
+  else
+    setup.irreversible_backend->inverse(dwt::make_span(plane.floats.data(), plane.width(), plane.height()), p);
+}
+
+// G.2: inverse RCT (reversible) or ICT (irreversible) on components 0..2.
+void inverse_component_transform(std::vector<Plane>& planes) {
+  Plane &p0 = planes[0], &p1 = planes[1], &p2 = planes[2];
+  if (p0.rect != p1.rect || p0.rect != p2.rect) throw DecodeError("the component transform needs equal tile-components");
+  if (p0.reversible) {
+    for (std::size_t i = 0; i < p0.ints.size(); ++i) {
+      const std::int32_t y = p0.ints[i], cb = p1.ints[i], cr = p2.ints[i];
+      // G-7: G = Y - floor((Cb + Cr) / 4); R = Cr + G; B = Cb + G (arithmetic shift is floor).
+      const std::int32_t g = y - static_cast<std::int32_t>((static_cast<std::int64_t>(cb) + cr) >> 2);
+      p0.ints[i] = cr + g;
+      p1.ints[i] = g;
+      p2.ints[i] = cb + g;
+    }
+  } else {
+    for (std::size_t i = 0; i < p0.floats.size(); ++i) {
+      const float y = p0.floats[i], cb = p1.floats[i], cr = p2.floats[i];
+      // G-9 (Table G.? coefficients as T.800 gives them).
+      p0.floats[i] = y + 1.402f * cr;
+      p1.floats[i] = y - 0.34413f * cb - 0.71414f * cr;
+      p2.floats[i] = y + 1.772f * cb;
+    }
+  }
+}
+
+// G.1.2: level shift back to unsigned, then clamping to the component's range; the irreversible
+// path rounds to the nearest integer first.
+void store(const Plane& plane, const ComponentSize& size, DecodedComponent& out) {
+  const std::int64_t shift = size.is_signed ? 0 : (std::int64_t{1} << (size.precision - 1));
+  const std::int64_t lo = size.is_signed ? -(std::int64_t{1} << (size.precision - 1)) : 0;
+  const std::int64_t hi = size.is_signed ? (std::int64_t{1} << (size.precision - 1)) - 1 : (std::int64_t{1} << size.precision) - 1;
+  const Rect area = plane.rect.intersect(Rect{out.x0, out.y0, std::int64_t{out.x0} + out.width, std::int64_t{out.y0} + out.height});
+  for (std::int64_t y = area.y0; y < area.y1; ++y)
+    for (std::int64_t x = area.x0; x < area.x1; ++x) {
+      const std::size_t from = static_cast<std::size_t>(y - plane.rect.y0) * static_cast<std::size_t>(plane.width()) +
+                               static_cast<std::size_t>(x - plane.rect.x0);
+      std::int64_t v;
+      if (plane.reversible) {
+        v = plane.ints[from];
+      } else {
+        const float f = plane.floats[from];
+        v = std::isfinite(f) ? static_cast<std::int64_t>(std::lrint(std::clamp(f, -1e12f, 1e12f))) : 0;
+      }
+      v = std::clamp(v + shift, lo, hi);
+      out.samples[static_cast<std::size_t>(y - out.y0) * static_cast<std::size_t>(out.width) + static_cast<std::size_t>(x - out.x0)] =
+          static_cast<std::int32_t>(v);
+    }
+}
+
+std::vector<std::uint8_t> joined(const TileStream& tile) {
+  std::vector<std::uint8_t> out;
+  for (const auto& part : tile.parts) out.insert(out.end(), part.begin(), part.end());
+  return out;
+}
+
+}  // namespace
+
+double tile_working_set(const Codestream& cs, const TileParams& params, int tile_index, int reduce) {
+  const Rect tile = cs.siz.grid.tile_rect(tile_index);
+  double bytes = 0;
+  for (std::size_t c = 0; c < params.components.size(); ++c) {
+    const ComponentSize& size = cs.siz.components[c];
+    const ComponentCoding& coding = params.components[c].coding;
+    const Rect tc = tile_component_rect(tile, size.dx, size.dy);
+    if (tc.width() >= (std::int64_t{1} << 31) || tc.height() >= (std::int64_t{1} << 31))
+      throw DecodeError("tile " + std::to_string(tile_index) + " is too large (a side of 2^31 samples or more)");
+    bytes += static_cast<double>(tc.width()) * static_cast<double>(tc.height()) * 4.0 / std::pow(4.0, reduce);
+    const CodingStyle style{coding.levels, coding.xcb, coding.ycb, coding.precincts};
+    for (int r = 0; r <= coding.levels; ++r) {
+      const int shift = coding.levels - r;
+      const Rect res{ceil_shift(tc.x0, shift), ceil_shift(tc.y0, shift), ceil_shift(tc.x1, shift), ceil_shift(tc.y1, shift)};
+      if (res.empty()) continue;
+      const auto [ppx, ppy] = style.precinct(r);
+      const double pw = static_cast<double>(ceil_shift(res.x1, ppx) - floor_shift(res.x0, ppx));
+      const double ph = static_cast<double>(ceil_shift(res.y1, ppy) - floor_shift(res.y0, ppy));
+      const int bands = r == 0 ? 1 : 3;
+      const int bx = std::min(coding.xcb, r == 0 ? ppx : ppx - 1), by = std::min(coding.ycb, r == 0 ? ppy : ppy - 1);
+      // Code-blocks of a band: its cells plus one per precinct edge that cuts a cell.
+      const double cells = (std::ceil(static_cast<double>(res.width()) / 2 / std::ldexp(1.0, std::max(bx, 0))) + pw + 1) *
+                           (std::ceil(static_cast<double>(res.height()) / 2 / std::ldexp(1.0, std::max(by, 0))) + ph + 1);
+      const double blocks = r == 0 ? cells * 2 : cells * bands;
+      bytes += pw * ph * (sizeof(Precinct) + bands * (sizeof(PrecinctBand) + 2 * sizeof(TagTreeDecoder) + 64));
+      bytes += pw * ph * static_cast<double>(params.cod.layers) * sizeof(t2::PacketId);
+      bytes += blocks * (sizeof(CodeBlock) + sizeof(BlockState) + 2 * 16);
+    }
+  }
+  return bytes;
+}
+
+void decode_tile(const Codestream& cs, const TileStream& tile_stream, const TileDecodeSetup& setup, DecodedImage& image) {
+  const DecodeOptions& options = *setup.options;
+  const TileParams params = resolve_tile_params(cs, tile_stream);
+  const int reduce = options.reduce;
+  for (std::size_t c = 0; c < params.components.size(); ++c)
+    if (params.components[c].coding.levels < reduce)
+      throw DecodeError("--reduce " + std::to_string(reduce) + " exceeds the " + std::to_string(params.components[c].coding.levels) +
+                        " decomposition levels of component " + std::to_string(c) + " in tile " + std::to_string(tile_stream.index));
+  const double need = tile_working_set(cs, params, tile_stream.index, reduce);
+  if (need > static_cast<double>(setup.memory_budget))
+    throw DecodeError("tile " + std::to_string(tile_stream.index) + " would need about " + std::to_string(static_cast<long long>(need / 1048576)) +
+                      " MiB, over the memory limit");
+
+  Tile tile;
+  try {
+    tile = build_tile(cs.siz.grid, sampling_of(cs.siz), styles_of(params), tile_stream.index);
+  } catch (const EncodeError& e) {
+    throw DecodeError("tile " + std::to_string(tile_stream.index) + ": " + e.what());
+  }
+
+  // Tier-2: every packet in progression order.
+  std::vector<t2::ComponentGeometry> geometry;
+  for (std::size_t c = 0; c < tile.components.size(); ++c)
+    geometry.push_back(geometry_of(tile.components[c], cs.siz.components[c].dx, cs.siz.components[c].dy));
+  std::vector<t2::PacketId> packets;
+  try {
+    packets = t2::progression(params.cod.order, params.cod.layers, tile.rect.x0, tile.rect.y0, tile.rect.x1, tile.rect.y1, geometry);
+  } catch (const std::invalid_argument& e) {
+    throw DecodeError("tile " + std::to_string(tile_stream.index) + ": " + e.what());
+  }
+  std::vector<BlockState> blocks(tile.code_blocks);
+  std::vector<std::vector<std::vector<std::vector<PrecinctBandTrees>>>> trees(tile.components.size());
+  for (std::size_t c = 0; c < tile.components.size(); ++c)
+    for (const Resolution& r : tile.components[c].resolutions) trees[c].emplace_back(r.precincts.size());
+
+  std::vector<std::uint8_t> joined_parts;
+  std::span<const std::uint8_t> data;
+  if (tile_stream.parts.size() == 1) {
+    data = tile_stream.parts[0];
+  } else {
+    joined_parts = joined(tile_stream);
+    data = joined_parts;
+  }
+  std::size_t pos = 0;
+  for (const t2::PacketId& id : packets) {
+    const auto c = static_cast<std::size_t>(id.component), r = static_cast<std::size_t>(id.resolution),
+               k = static_cast<std::size_t>(id.precinct);
+    const TileComponent& tc = tile.components[c];
+    PacketContext ctx;
+    ctx.sop = params.cod.sop;
+    ctx.eph = params.cod.eph;
+    ctx.style = t1::BlockStyle::from_spcod(params.components[c].coding.block_style);
+    ctx.keep = (options.max_layers <= 0 || id.layer < options.max_layers) && id.resolution <= tc.levels - reduce;
+    try {
+      pos = read_packet(data, pos, tile_stream.first_offset, tc.resolutions[r].precincts[k], id.layer, trees[c][r][k], blocks, ctx);
+    } catch (const PacketTruncated& e) {
+      image.warnings.push_back("truncated: tile " + std::to_string(tile_stream.index) + ": " + e.what() +
+                               "; the tile is decoded from the packets before it");
+      break;
+    }
+  }
+  trees.clear();
+
+  // Tier-1, dequantisation and the inverse DWT per tile-component, then the component transform.
+  std::vector<Plane> planes(tile.components.size());
+  for (std::size_t c = 0; c < tile.components.size(); ++c) {
+    const TileComponent& tc = tile.components[c];
+    Plane& plane = planes[c];
+    plane.rect = tc.resolutions[static_cast<std::size_t>(tc.levels - reduce)].rect;
+    plane.reversible = params.components[c].coding.reversible;
+    const std::size_t n = static_cast<std::size_t>(plane.rect.width()) * static_cast<std::size_t>(plane.rect.height());
+    if (plane.reversible) plane.ints.assign(n, 0);
+    else plane.floats.assign(n, 0.0f);
+    decode_blocks(tc, params.components[c], cs.siz.components[c], reduce, blocks, plane);
+    try {
+      inverse_dwt(plane, tc.levels - reduce, setup);
+    } catch (const dwt::DwtError& e) {
+      throw DecodeError("tile " + std::to_string(tile_stream.index) + ": inverse DWT: " + e.what());
+    }
+  }
+  blocks.clear();
+  if (params.cod.mct == 1) inverse_component_transform(planes);
+  for (std::size_t c = 0; c < planes.size(); ++c) store(planes[c], cs.siz.components[c], image.components[c]);
+}
+
+}  // namespace codec::dec

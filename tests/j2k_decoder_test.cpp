@@ -1,0 +1,517 @@
+// The decoder (codec/decoder), proven three ways: our encoder's streams over the lossless option
+// matrix decode to exactly the input; lossy streams, ours and opj_compress's, decode like
+// opj_decompress decodes them; and truncated or corrupted streams give a DecodeError or a partial
+// image, never a crash (CI runs this under ASan and UBSan too). Tests that need OpenJPEG's tools
+// skip with a message when they are absent.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "codec/decoder/decoder.h"
+#include "codec/encoder/encoder.h"
+#include "dwt_gpu/gpu_backend.h"
+#include "imageio/write.h"
+#include "support/option_matrix.h"
+#include "support/scratch_dir.h"
+#include "support/shared_assets.h"
+#include "imageio/read.h"
+#include "testimages/patterns.h"
+#include "testimages/prng.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using test_support::have_tool;
+using test_support::ScratchDir;
+using test_support::write_bytes;
+using testimages::Pattern;
+
+imageio::Image image(Pattern p, int w, int h, int channels, int bits, bool is_signed = false) {
+  return testimages::generate(p, w, h, channels, bits, is_signed);
+}
+
+std::vector<std::uint8_t> encode(const imageio::Image& img, const codec::EncodeParams& params) {
+  return codec::encode(codec::to_source_image(img, "generated"), params, codec::FileFormat::Codestream);
+}
+
+codec::EncodeParams lossless() {
+  codec::EncodeParams p;
+  p.lossless = true;
+  p.threads = 1;
+  return p;
+}
+
+codec::EncodeParams lossy() {
+  codec::EncodeParams p;
+  p.lossless = false;
+  p.dwt = codec::DwtDevice::Cpu;
+  p.threads = 1;
+  return p;
+}
+
+codec::DecodeOptions options() {
+  codec::DecodeOptions o;
+  o.threads = 1;
+  return o;
+}
+
+// Every sample of every component equals the input's (channels interleaved there).
+void expect_same_as_input(const codec::DecodedImage& out, const imageio::Image& in, const std::string& what) {
+  ASSERT_EQ(out.components.size(), static_cast<std::size_t>(in.channels)) << what;
+  for (int c = 0; c < in.channels; ++c) {
+    const codec::DecodedComponent& comp = out.components[static_cast<std::size_t>(c)];
+    ASSERT_EQ(comp.width, in.width) << what;
+    ASSERT_EQ(comp.height, in.height) << what;
+    EXPECT_EQ(comp.precision, in.bits_per_sample) << what;
+    EXPECT_EQ(comp.is_signed, in.is_signed) << what;
+    int mismatches = 0;
+    for (int y = 0; y < in.height; ++y)
+      for (int x = 0; x < in.width; ++x) {
+        const std::int32_t want = static_cast<std::int32_t>(in.at(x, y, c));
+        const std::int32_t got = comp.samples[static_cast<std::size_t>(y) * static_cast<std::size_t>(in.width) + static_cast<std::size_t>(x)];
+        if (want != got && mismatches++ < 3)
+          ADD_FAILURE() << what << ": component " << c << " at (" << x << "," << y << "): " << got << ", input " << want;
+      }
+    EXPECT_EQ(mismatches, 0) << what << ": component " << c;
+  }
+}
+
+void check_lossless(const imageio::Image& in, const codec::EncodeParams& params, const std::string& what) {
+  SCOPED_TRACE(what);
+  const auto stream = encode(in, params);
+  expect_same_as_input(codec::decode(stream, options()), in, what);
+}
+
+// ---- Lossless: the input back, across the encoder's option matrix ----
+
+TEST(J2kDecoderLossless, ImageKinds) {
+  check_lossless(image(Pattern::Mix, 67, 45, 1, 8), lossless(), "grey 8-bit");
+  check_lossless(image(Pattern::Mix, 67, 45, 3, 8), lossless(), "RGB 8-bit");
+  check_lossless(image(Pattern::ZonePlate, 40, 33, 4, 8), lossless(), "RGBA 8-bit");
+  check_lossless(image(Pattern::Mix, 45, 38, 3, 16), lossless(), "RGB 16-bit");
+  for (int bits : {8, 12, 16}) check_lossless(image(Pattern::Mix, 45, 38, 1, bits, true), lossless(), "signed " + std::to_string(bits));
+  check_lossless(image(Pattern::Noise, 31, 17, 1, 1), lossless(), "1-bit");
+  check_lossless(image(Pattern::Noise, 31, 17, 3, 5), lossless(), "5-bit RGB");
+}
+
+TEST(J2kDecoderLossless, SizesAndLevels) {
+  for (auto [w, h] : test_support::kThinAndTinySizes)
+    check_lossless(image(Pattern::Mix, w, h, 1, 8), lossless(), std::to_string(w) + "x" + std::to_string(h));
+  for (int levels : {0, 1, 2, 6, 10}) {
+    auto p = lossless();
+    p.levels = levels;
+    check_lossless(image(Pattern::Edges, 70, 53, 3, 8), p, std::to_string(levels) + " levels");
+  }
+}
+
+TEST(J2kDecoderLossless, TilingsOrdersPrecinctsCodeBlocks) {
+  const auto img = image(Pattern::Mix, 45, 38, 3, 8);
+  for (const auto& t : test_support::kTilings) {
+    auto p = lossless();
+    t.apply(p);
+    check_lossless(img, p, t.name());
+  }
+  const auto img70 = image(Pattern::Mix, 70, 53, 3, 8);
+  for (int order = 0; order < 5; ++order)
+    for (bool precincts : {false, true}) {
+      auto p = lossless();
+      test_support::apply_order(p, order, precincts);
+      check_lossless(img70, p, "order " + std::to_string(order) + (precincts ? " with precincts" : ""));
+    }
+  for (auto [w, h] : test_support::kCodeBlockSizes) {
+    auto p = lossless();
+    p.codeblock_width = w;
+    p.codeblock_height = h;
+    check_lossless(img70, p, "code-blocks " + std::to_string(w) + "x" + std::to_string(h));
+  }
+}
+
+TEST(J2kDecoderLossless, ModeSwitchesAndMarkers) {
+  const auto img = image(Pattern::Mix, 70, 53, 3, 8);
+  const char* names[] = {"bypass", "reset", "termall", "vcausal", "pterm", "segsym"};
+  for (int m = 0; m < 6; ++m) {
+    auto p = lossless();
+    p.block_style = codec::t1::BlockStyle::from_spcod(static_cast<std::uint8_t>(1 << m));
+    check_lossless(img, p, names[m]);
+  }
+  auto all = lossless();
+  all.block_style = codec::t1::BlockStyle::from_spcod(0x3F);
+  all.codeblock_width = all.codeblock_height = 16;
+  check_lossless(img, all, "every mode switch");
+  auto markers = lossless();
+  markers.sop = markers.eph = true;
+  markers.precincts = {{32, 32}, {16, 16}};
+  markers.order = codec::Progression::PCRL;
+  check_lossless(img, markers, "SOP, EPH, precincts, PCRL");
+}
+
+// ---- The inverse 9/7 on the GPU (thesis 4.6: the forward shader run backwards) ----
+
+TEST(J2kDecoderGpu, InverseDwtOnTheGpuMatchesTheCpu) {
+  std::unique_ptr<dwt_gpu::GpuBackend> gpu;
+  try {
+    gpu = std::make_unique<dwt_gpu::GpuBackend>(glc::Platform::Auto, true);
+  } catch (const std::exception& e) {
+    GTEST_SKIP() << "no GL context: " << e.what();
+  }
+  const auto img = image(Pattern::Mix, 70, 53, 3, 8);
+  auto p = lossy();
+  p.tile_width = 40;
+  p.tile_height = 32;
+  p.image_x0 = 3;
+  p.image_y0 = 1;
+  const auto stream = encode(img, p);
+  const codec::DecodedImage cpu = codec::decode(stream, options());
+  auto o = options();
+  o.irreversible_backend = gpu.get();
+  const codec::DecodedImage on_gpu = codec::decode(stream, o);
+  ASSERT_EQ(cpu.components.size(), on_gpu.components.size());
+  for (std::size_t c = 0; c < cpu.components.size(); ++c) {
+    int worst = 0;
+    for (std::size_t i = 0; i < cpu.components[c].samples.size(); ++i)
+      worst = std::max(worst, std::abs(cpu.components[c].samples[i] - on_gpu.components[c].samples[i]));
+    // float32 convolution against float32 lifting: the rounding of a sample may differ by one.
+    EXPECT_LE(worst, 1) << "component " << c;
+  }
+}
+
+// ---- Lossy: our streams and OpenJPEG's, against opj_decompress ----
+
+struct Pgx {
+  int width = 0, height = 0;
+  std::vector<std::int32_t> samples;
+};
+
+// PGX: "PG ML|LM [+|-]depth width height" (the sign may be absent or touch the depth), one line.
+Pgx read_pgx(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string header;
+  std::getline(in, header);
+  std::istringstream fields(header);
+  std::string magic, endian;
+  fields >> magic >> endian >> std::ws;
+  std::string sign = "+";
+  if (fields.peek() == '+' || fields.peek() == '-') sign = std::string(1, static_cast<char>(fields.get()));
+  int depth = 0;
+  Pgx p;
+  fields >> depth >> p.width >> p.height;
+  if (!fields || magic != "PG") throw std::runtime_error("bad PGX " + path.string());
+  const int bytes = depth <= 8 ? 1 : (depth <= 16 ? 2 : 4);
+  const bool big = endian == "ML";
+  for (long i = 0; i < static_cast<long>(p.width) * p.height; ++i) {
+    std::uint32_t v = 0;
+    unsigned char b[4];
+    in.read(reinterpret_cast<char*>(b), bytes);
+    for (int k = 0; k < bytes; ++k) v |= static_cast<std::uint32_t>(b[big ? k : bytes - 1 - k]) << (8 * (bytes - 1 - k));
+    std::int32_t s = static_cast<std::int32_t>(v);
+    if (sign == "-" && bytes < 4 && (v >> (8 * bytes - 1))) s -= static_cast<std::int32_t>(1u << (8 * bytes));
+    p.samples.push_back(s);
+  }
+  if (!in) throw std::runtime_error("short PGX " + path.string());
+  return p;
+}
+
+// opj_decompress' output of `stream` (PGX per component), with its extra options.
+std::vector<Pgx> opj_decode(const ScratchDir& dir, const fs::path& stream, const std::string& extra = "") {
+  const fs::path out = dir / "opj.pgx";
+  for (int c = 0; c < 8; ++c) fs::remove(dir / ("opj_" + std::to_string(c) + ".pgx"));
+  if (!test_support::run_quietly("opj_decompress -i '" + stream.string() + "' -o '" + out.string() + "' " + extra))
+    throw std::runtime_error("opj_decompress failed on " + stream.string());
+  std::vector<Pgx> comps;
+  for (int c = 0; fs::exists(dir / ("opj_" + std::to_string(c) + ".pgx")); ++c)
+    comps.push_back(read_pgx(dir / ("opj_" + std::to_string(c) + ".pgx")));
+  return comps;
+}
+
+// Our decode equals opj_decompress' sample for sample, or (max_difference 1) differs by at most
+// one where OpenJPEG's float 9/7 and ICT round differently from ours.
+void expect_like_opj(const codec::DecodedImage& ours, const std::vector<Pgx>& theirs, int max_difference, const std::string& what) {
+  ASSERT_EQ(ours.components.size(), theirs.size()) << what;
+  for (std::size_t c = 0; c < theirs.size(); ++c) {
+    const auto& a = ours.components[c];
+    ASSERT_EQ(a.width, theirs[c].width) << what << " component " << c;
+    ASSERT_EQ(a.height, theirs[c].height) << what << " component " << c;
+    int worst = 0;
+    for (std::size_t i = 0; i < a.samples.size(); ++i) worst = std::max(worst, std::abs(a.samples[i] - theirs[c].samples[i]));
+    EXPECT_LE(worst, max_difference) << what << " component " << c;
+  }
+}
+
+class J2kDecoderVsOpenJpeg : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!have_tool("opj_decompress") || !have_tool("opj_compress")) GTEST_SKIP() << "opj_decompress/opj_compress not installed";
+  }
+  ScratchDir dir{"j2k_decoder_test"};
+};
+
+TEST_F(J2kDecoderVsOpenJpeg, OurLossyStreams) {
+  const auto img = image(Pattern::Mix, 70, 53, 3, 8);
+  struct Case {
+    std::string name;
+    codec::EncodeParams params;
+  };
+  std::vector<Case> cases;
+  cases.push_back({"default", lossy()});
+  {
+    auto p = lossy();
+    p.layers = {{codec::LayerTarget::Kind::Bytes, 900}, {codec::LayerTarget::Kind::Bytes, 2500}, {codec::LayerTarget::Kind::Bytes, 6000}};
+    cases.push_back({"three layers", p});
+  }
+  for (int order = 0; order < 5; ++order) {
+    auto p = lossy();
+    test_support::apply_order(p, order, true);
+    cases.push_back({"order " + std::to_string(order) + " with precincts", p});
+  }
+  for (const auto& t : test_support::kTilings) {
+    auto p = lossy();
+    t.apply(p);
+    cases.push_back({t.name(), p});
+  }
+  {
+    auto p = lossy();
+    p.block_style = codec::t1::BlockStyle::from_spcod(0x3F);
+    p.sop = p.eph = true;
+    p.layers = {{codec::LayerTarget::Kind::Bytes, 3000}, {codec::LayerTarget::Kind::Bytes, 5000}};
+    cases.push_back({"every mode switch, SOP, EPH, two layers", p});
+  }
+  {
+    auto p = lossy();
+    p.levels = 0;
+    cases.push_back({"no DWT", p});
+  }
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const auto stream = encode(img, c.params);
+    write_bytes(dir / "ours.j2k", stream);
+    expect_like_opj(codec::decode(stream, options()), opj_decode(dir, dir / "ours.j2k"), 1, c.name);
+  }
+  // Greyscale 12-bit and signed: no component transform, so every difference is the DWT's.
+  for (bool is_signed : {false, true}) {
+    const auto grey = image(Pattern::ZonePlate, 61, 47, 1, 12, is_signed);
+    const auto stream = encode(grey, lossy());
+    write_bytes(dir / "ours.j2k", stream);
+    expect_like_opj(codec::decode(stream, options()), opj_decode(dir, dir / "ours.j2k"), 1, is_signed ? "signed 12-bit" : "12-bit");
+  }
+}
+
+TEST_F(J2kDecoderVsOpenJpeg, OpenJpegStreams) {
+  imageio::write_image((dir / "in.ppm").string(), image(Pattern::Mix, 131, 77, 3, 8));
+  imageio::write_image((dir / "grey.pgm").string(), image(Pattern::Edges, 90, 61, 1, 8));
+  struct Case {
+    std::string input, options;
+  };
+  const Case cases[] = {
+      {"in.ppm", ""},
+      {"in.ppm", "-r 20,10,5"},
+      {"in.ppm", "-t 40,30 -p RPCL -r 10 -n 3"},
+      {"in.ppm", "-c [32,32],[16,16] -b 8,8 -p PCRL"},
+      {"in.ppm", "-M 63 -r 15"},
+      {"in.ppm", "-M 1 -r 15,5"},
+      {"in.ppm", "-M 8 -p CPRL -r 12"},
+      {"in.ppm", "-SOP -EPH -p RLCP -r 12,4"},
+      {"in.ppm", "-t 50,40 -TP R -r 20,5 -n 4"},
+      {"in.ppm", "-t 64,64 -c [32,32] -p CPRL -TP C -n 4"},
+      {"in.ppm", "-c [64,64],[32,32] -p RPCL -M 61 -n 5 -r 10,5,2"},
+      {"in.ppm", "-d 3,5 -n 4 -r 9"},
+      {"in.ppm", "-I -r 8,3"},
+      {"in.ppm", "-I -M 63 -c [16,16] -b 4,4 -p CPRL -r 8 -n 3"},
+      {"grey.pgm", "-I -t 33,21 -n 3"},
+      {"grey.pgm", "-n 1"},
+  };
+  for (const Case& c : cases) {
+    const std::string what = c.input + " " + c.options;
+    SCOPED_TRACE(what);
+    ASSERT_TRUE(test_support::run_quietly("opj_compress -i '" + (dir / c.input).string() + "' -o '" + (dir / "opj.j2k").string() + "' " + c.options))
+        << "opj_compress " << what;
+    const bool irreversible = c.options.find("-I") != std::string::npos;
+    expect_like_opj(codec::decode_file((dir / "opj.j2k").string(), options()), opj_decode(dir, dir / "opj.j2k"), irreversible ? 1 : 0, what);
+  }
+}
+
+TEST_F(J2kDecoderVsOpenJpeg, ReduceAndLayersMatchOpjDecompress) {
+  imageio::write_image((dir / "in.ppm").string(), image(Pattern::Mix, 131, 77, 3, 8));
+  for (const std::string opts : {"-r 40,20,10,5", "-I -r 40,10 -t 64,48", "-r 30,10 -p RPCL -c [32,32],[16,16]"}) {
+    ASSERT_TRUE(test_support::run_quietly("opj_compress -i '" + (dir / "in.ppm").string() + "' -o '" + (dir / "opj.j2k").string() + "' " + opts));
+    const int tolerance = opts.find("-I") != std::string::npos ? 1 : 0;
+    for (int reduce = 0; reduce <= 3; ++reduce) {
+      auto o = options();
+      o.reduce = reduce;
+      expect_like_opj(codec::decode_file((dir / "opj.j2k").string(), o), opj_decode(dir, dir / "opj.j2k", "-r " + std::to_string(reduce)),
+                      tolerance, opts + " reduce " + std::to_string(reduce));
+    }
+    for (int layers = 1; layers <= 2; ++layers) {
+      auto o = options();
+      o.max_layers = layers;
+      expect_like_opj(codec::decode_file((dir / "opj.j2k").string(), o), opj_decode(dir, dir / "opj.j2k", "-l " + std::to_string(layers)),
+                      tolerance, opts + " layers " + std::to_string(layers));
+    }
+  }
+}
+
+// ---- The T.803 conformance streams (../shared/conformance) ----
+
+// Class 1 limits per component: the largest peak error and mean squared error T.803 allows
+// against the reference decoded image (0, 0: exact). `reduce` is the resolution the reference
+// was made at. Streams whose features are not implemented yet must fail with a message naming
+// them, so that this table is updated when they are.
+struct ConformanceCase {
+  const char* stream;
+  int reduce;
+  std::vector<int> peak;
+  std::vector<double> mse;
+  const char* unsupported = nullptr;  // the feature the decoder refuses, for now
+};
+
+TEST(J2kDecoderConformance, ClassOneStreamsWithinLimits) {
+  const fs::path root = test_support::shared_dir() / "conformance";
+  REQUIRE_SHARED_FILE(root / "streams" / "p0_01.j2k");
+  const ConformanceCase cases[] = {
+      {"p0_01", 0, {0}, {0}},
+      {"p0_02", 0, {0}, {0}},
+      {"p0_03", 0, {0}, {0}, "POC"},
+      {"p0_04", 0, {5, 4, 6}, {0.776, 0.626, 1.07}},
+      {"p0_05", 0, {2, 2, 2, 0}, {0.302, 0.307, 0.269, 0}},
+      {"p0_06", 0, {635, 403, 378, 0}, {11287, 6124, 3968, 0}},
+      {"p0_08", 1, {0, 0, 0}, {0, 0, 0}},
+      {"p0_09", 0, {0}, {0}},
+      {"p0_10", 0, {0, 0, 0}, {0, 0, 0}},
+      {"p1_01", 0, {0}, {0}},
+      {"p1_02", 0, {0}, {0}, "PPT"},
+      {"p1_03", 0, {0}, {0}, "PPM"},
+      {"p1_04", 0, {624}, {3080}},
+  };
+  for (const ConformanceCase& c : cases) {
+    SCOPED_TRACE(c.stream);
+    const fs::path stream = root / "streams" / (std::string(c.stream) + ".j2k");
+    if (!fs::exists(stream)) continue;  // p0_07 is not distributed; others may be missing too
+    auto o = options();
+    o.reduce = c.reduce;
+    if (c.unsupported) {
+      try {
+        (void)codec::decode_file(stream.string(), o);
+        ADD_FAILURE() << c.stream << " decodes now: give it its limits";
+      } catch (const codec::DecodeError& e) {
+        EXPECT_NE(std::string(e.what()).find(c.unsupported), std::string::npos) << e.what();
+      }
+      continue;
+    }
+    const codec::DecodedImage img = codec::decode_file(stream.string(), o);
+    ASSERT_EQ(img.components.size(), c.peak.size());
+    for (std::size_t k = 0; k < c.peak.size(); ++k) {
+      const Pgx ref = read_pgx(root / "reference" / ("c1" + std::string(c.stream) + "_" + std::to_string(k) + ".pgx"));
+      const auto& got = img.components[k];
+      ASSERT_EQ(got.width, ref.width) << "component " << k;
+      ASSERT_EQ(got.height, ref.height) << "component " << k;
+      int peak = 0;
+      double sum = 0;
+      for (std::size_t i = 0; i < ref.samples.size(); ++i) {
+        const int d = std::abs(got.samples[i] - ref.samples[i]);
+        peak = std::max(peak, d);
+        sum += static_cast<double>(d) * d;
+      }
+      EXPECT_LE(peak, c.peak[k]) << "component " << k;
+      EXPECT_LE(sum / static_cast<double>(ref.samples.size()), c.mse[k]) << "component " << k;
+    }
+  }
+}
+
+// ---- Robustness: truncated and corrupted streams ----
+
+// Decodes, accepting a DecodeError; anything else (another exception, a crash, a sanitizer
+// report) fails the test.
+void decode_or_refuse(const std::vector<std::uint8_t>& bytes) {
+  try {
+    (void)codec::decode(bytes, options());
+  } catch (const codec::DecodeError& e) {
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+  }
+}
+
+std::vector<std::vector<std::uint8_t>> robustness_streams() {
+  const auto img = image(Pattern::Mix, 37, 29, 3, 8);
+  std::vector<std::vector<std::uint8_t>> out;
+  auto p = lossless();
+  p.tile_width = 20;
+  p.tile_height = 16;
+  p.precincts = {{16, 16}, {8, 8}};
+  p.sop = p.eph = true;
+  p.codeblock_width = p.codeblock_height = 8;
+  out.push_back(encode(img, p));
+  auto q = lossy();
+  q.block_style = codec::t1::BlockStyle::from_spcod(0x3F);
+  q.layers = {{codec::LayerTarget::Kind::Bytes, 900}, {codec::LayerTarget::Kind::Bytes, 2000}};
+  q.order = codec::Progression::RPCL;
+  out.push_back(encode(img, q));
+  return out;
+}
+
+TEST(J2kDecoderRobustness, TruncatedStreamsDecodeWhatIsThere) {
+  for (const auto& stream : robustness_streams()) {
+    for (std::size_t len = 0; len < stream.size(); len += (len < 200 ? 1 : 7)) {
+      SCOPED_TRACE("truncated to " + std::to_string(len));
+      decode_or_refuse(std::vector<std::uint8_t>(stream.begin(), stream.begin() + static_cast<std::ptrdiff_t>(len)));
+    }
+    // A stream cut inside its tile data still yields an image, with a warning.
+    const std::vector<std::uint8_t> cut(stream.begin(), stream.begin() + static_cast<std::ptrdiff_t>(stream.size() * 3 / 4));
+    const auto img = codec::decode(cut, options());
+    EXPECT_FALSE(img.warnings.empty());
+    EXPECT_EQ(img.components.size(), 3u);
+  }
+}
+
+TEST(J2kDecoderRobustness, CorruptedStreamsNeverCrash) {
+  int run = 0;
+  for (const auto& stream : robustness_streams()) {
+    for (int trial = 0; trial < 400; ++trial) {
+      std::vector<std::uint8_t> bytes = stream;
+      const int flips = 1 + trial % 4;
+      for (int f = 0; f < flips; ++f) {
+        const std::uint64_t r = testimages::splitmix64_at(static_cast<std::uint64_t>(run), static_cast<std::uint64_t>(f));
+        // Headers are where the lengths and counts live: hit them more often.
+        const std::size_t span = (trial % 2) ? bytes.size() : std::min<std::size_t>(bytes.size(), 120);
+        bytes[static_cast<std::size_t>(r % span)] ^= static_cast<std::uint8_t>(1u << ((r >> 32) % 8));
+      }
+      ++run;
+      SCOPED_TRACE("trial " + std::to_string(trial));
+      decode_or_refuse(bytes);
+    }
+  }
+}
+
+TEST(J2kDecoderRobustness, HostileSizesAreRefusedBeforeAllocating) {
+  // A valid header for a 60000 x 60000 x 3 image: 40 GiB of samples.
+  auto stream = encode(image(Pattern::Mix, 16, 16, 3, 8), lossless());
+  // Xsiz, Ysiz at bytes 8..15 (after SOC, the SIZ marker, Lsiz, Rsiz); XTsiz, YTsiz at 24..31.
+  for (int i : {8, 12, 24, 28}) {
+    stream[static_cast<std::size_t>(i)] = 0;
+    stream[static_cast<std::size_t>(i + 1)] = 0;
+    stream[static_cast<std::size_t>(i + 2)] = 0xEA;
+    stream[static_cast<std::size_t>(i + 3)] = 0x60;
+  }
+  try {
+    (void)codec::decode(stream, options());
+    FAIL() << "a 40 GiB image was accepted";
+  } catch (const codec::DecodeError& e) {
+    EXPECT_NE(std::string(e.what()).find("memory limit"), std::string::npos) << e.what();
+  }
+}
+
+TEST(J2kDecoderRobustness, ErrorsNameTheOffset) {
+  auto stream = encode(image(Pattern::Mix, 16, 16, 1, 8), lossless());
+  stream[1] = 0x00;  // SOC broken
+  try {
+    (void)codec::decode(stream, options());
+    FAIL();
+  } catch (const codec::DecodeError& e) {
+    EXPECT_NE(std::string(e.what()).find("at byte 0"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW((void)codec::decode(std::vector<std::uint8_t>{}, options()), codec::DecodeError);
+}
+
+}  // namespace
