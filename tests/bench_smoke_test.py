@@ -2,7 +2,7 @@
 """Smoke test of bench/table41, bench/psnr and bench/speed, so that the scripts cannot rot: table41 on
 128x128 (one run, all four encoders, CSV and figure), psnr on one small synthetic image (the edges
 pattern, with a PNG gAMA chunk like the Kodak photographs carry) at the three
-rates of Table 4.2, and speed on 128x128 (one run, all five encoders, 0.75 bpp and lossless, JSON).
+rates of Table 4.2, and speed on 128x128 (one run, all six encoders, 0.75 bpp and lossless, JSON).
 It checks the shape of the Markdown tables (header columns, one row per
 size/encoder or image/rate/encoder, numbers that parse), not speed.
 
@@ -218,13 +218,13 @@ def test_speed(bin_dir, tmp):
     header, rows = table_after(out, heading)
     check(header == ["encoder", "rate", "wall s (median)", "x Grok", "bytes", "PSNR RGB dB", "peak RSS MB"],
           f"speed header: {header}")
-    check(len(rows) == 10, f"speed: {len(rows)} rows, expected 10 (2 rates x 5 encoders)")
-    prefixes = ["j2kenc (default", "j2kenc --dwt cpu", "opj_compress", "grk_compress", "ojph_compress"]
+    check(len(rows) == 12, f"speed: {len(rows)} rows, expected 12 (2 rates x 6 encoders)")
+    prefixes = ["j2kenc (default", "j2kenc --dwt cpu", "j2kenc --ht", "opj_compress", "grk_compress", "ojph_compress"]
     for i, row in enumerate(rows):
         if not check(header and len(row) == len(header), f"speed row has {len(row)} cells: {row}"):
             continue
-        rate = "0.75 bpp" if i < 5 else "lossless"
-        check(row[0].startswith(prefixes[i % 5]), f"speed encoder {row[0]}, expected {prefixes[i % 5]}")
+        rate = "0.75 bpp" if i < 6 else "lossless"
+        check(row[0].startswith(prefixes[i % 6]), f"speed encoder {row[0]}, expected {prefixes[i % 6]}")
         check(row[1] == rate, f"speed rate {row[1]}, expected {rate}")
         number(row[2], f"speed {row[0]} wall s")
         x = number(row[3], f"speed {row[0]} x Grok")
@@ -244,7 +244,7 @@ def test_speed(bin_dir, tmp):
     if check(os.path.isfile(json_path), "speed wrote no JSON"):
         with open(json_path, encoding="utf-8") as f:
             data = json.load(f)
-        check([r["encoder"] for r in data["results"]] == ["j2kenc", "j2kenc-cpu", "opj", "grk", "ojph"] * 2,
+        check([r["encoder"] for r in data["results"]] == ["j2kenc", "j2kenc-cpu", "j2kenc-ht", "opj", "grk", "ojph"] * 2,
               f"speed JSON encoders: {[r['encoder'] for r in data['results']]}")
         check(all(len(r["runs_wall_s"]) == 1 for r in data["results"]), "speed JSON: runs_wall_s should hold 1 run")
 

@@ -286,11 +286,11 @@ TEST(J2kHt, LossyDecodesAsTheEbcotStreamOfTheSameIndices) {
   check_lossy("1024x4 code-blocks", generated(120, 90, 1, 8), blocks, 45);
 }
 
-TEST(J2kHt, RefusesWhatItCannotDoYet) {
+TEST(J2kHt, RefusesWhatItCannotDo) {
   const auto source = codec::to_source_image(generated(16, 16, 1, 8), "generated");
   codec::EncodeParams p = ht(false);
-  p.layers = {codec::LayerTarget{codec::LayerTarget::Kind::Bytes, 500}};
-  EXPECT_THROW(codec::encode(source, p, codec::FileFormat::Codestream), codec::EncodeError);
+  p.layers = {codec::LayerTarget{codec::LayerTarget::Kind::Bytes, 300}, codec::LayerTarget{codec::LayerTarget::Kind::Bytes, 500}};
+  EXPECT_THROW(codec::encode(source, p, codec::FileFormat::Codestream), codec::EncodeError) << "one cleanup per block: one layer";
   codec::EncodeParams m = ht();
   m.block_style.bypass = true;
   EXPECT_THROW(codec::encode(source, m, codec::FileFormat::Codestream), codec::EncodeError);

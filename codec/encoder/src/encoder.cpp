@@ -5,6 +5,7 @@
 #include "codec/codestream/codestream_writer.h"
 #include "codec/codestream/jp2.h"
 #include "codec/codestream/main_header.h"
+#include "ht_rate.h"
 #include "rate_control.h"
 #include "tile_coder.h"
 #include "codec/structure/error.h"
@@ -146,6 +147,11 @@ std::size_t write_tile_packets(const CodedTile& coded, const EncodeParams& param
           band.cols = pb.cols;
           band.rows = pb.rows;
           for (const CodeBlock& cb : pb.blocks) {
+            if (!coded.ht_candidates.empty()) {  // HT during rate control: the cleanup a trial picks
+              HtPacketPlan ht = ht_packet_plan(coded, cb.index, passes[cb.index]);
+              band.blocks.push_back(t2::CodeBlockCoding{ht.encoded, std::move(ht.cumulative_passes)});
+              continue;
+            }
             const t1::EncodedBlock& eb = coded.blocks[cb.index];
             band.blocks.push_back(t2::CodeBlockCoding{&eb, passes[cb.index]});
           }

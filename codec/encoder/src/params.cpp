@@ -19,9 +19,9 @@ void validate(const EncodeParams& p) {
     if (p.layers[i].kind != p.layers[0].kind) throw EncodeError("layer targets must all be of one kind");
     if (i > 0 && p.layers[i].value <= p.layers[i - 1].value) throw EncodeError("layer targets must increase");
   }
-  if (p.ht && !p.layers.empty())
-    throw EncodeError("--ht does not take byte or PSNR targets yet: HT blocks are coded whole (drop the target, or "
-                      "set the quality with --base-step)");
+  if (p.ht && p.layers.size() > 1)
+    throw EncodeError("HT coding takes one quality layer: each HT code-block is one cleanup pass, which cannot be "
+                      "split between layers (give one byte or PSNR target)");
   if (p.ht && p.block_style != t1::BlockStyle{})
     throw EncodeError("--modes are EBCOT's code-block switches; HT code-blocks (--ht) take none of them");
   if (p.layers.size() > 65535) throw EncodeError("at most 65535 quality layers");

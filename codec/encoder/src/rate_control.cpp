@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "ht_rate.h"
 #include "reconstruction.h"
 #include "codec/rate/hull.h"
 #include "codec/rate/rate_allocator.h"
@@ -17,6 +18,8 @@ namespace codec {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+// Rounds of HT candidate extensions after the first allocation (ht_rate.h) at most.
+constexpr int kHtRounds = 8;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 // A selection as the allocator gives it, per layer over every block of the image in tile order
@@ -193,7 +196,9 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
   const auto start = Clock::now();
   double recode_ms = 0;
   LayerPasses passes;
+  const bool ht = in.params.ht;
   for (int round = 0;; ++round) {
+    if (ht) sync_ht_missing_msbs(tiles);
     std::vector<std::vector<rate::HullPoint>> hulls;
     double energy = 0;
     for (const CodedTile& tile : tiles)
@@ -205,6 +210,19 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
     passes = in.params.layers[0].kind == LayerTarget::Kind::Psnr
                  ? select_for_psnr(tiles, allocator, hulls, energy, in)
                  : select_for_bytes(tiles, allocator, hulls.size(), in, file_size);
+    if (ht) {
+      // HT: blocks whose choice lies at the edge of the cleanups coded get the next planes coded.
+      // An edge moves by two planes a round and the prediction is rarely further off than that.
+      const auto extensions = ht_blocks_at_edges(tiles, passes, lowest_slope_taken(tiles, passes, hulls));
+      if (extensions.empty() || round == kHtRounds) break;
+      report.recoded_blocks += extensions.size();
+      const auto extend_start = Clock::now();
+      extend_ht_candidates(tiles, extensions, in.params, in.pool);
+      const double ms = ms_since(extend_start);
+      recode_ms += ms;
+      report.times.tier1 += ms;
+      continue;
+    }
     const auto starved = starved_blocks(tiles, passes, hulls);
     // A block coded again in full is never starved again; one that was skipped may stop again,
     // and then be coded in full a round later: three rounds are enough.
@@ -222,6 +240,7 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
     recode_ms += ms;
     report.times.tier1 += ms;
   }
+  if (ht) settle_ht_choices(tiles, passes);
   report.times.rate_control = ms_since(start) - recode_ms;
   return passes;
 }

@@ -40,7 +40,10 @@ struct RateControlInputs {
 // within their last coded bit-plane may have stopped too soon: they are coded again in full on
 // `pool` (tiles are updated; at most two rounds) and the allocation repeated, which gives the
 // selection coding every pass would. Times go to report.times (rate control; recoding as tier-1)
-// and the recoded blocks are counted in report.recoded_blocks.
+// and the recoded blocks are counted in report.recoded_blocks. HT blocks come with cleanups from
+// several planes as their truncation points (ht_rate.h): blocks whose choice lies at the edge of
+// those coded get more planes coded between rounds, and at the end each block's chosen cleanup
+// takes its place (one pass in `passes`).
 LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs& in, const FileSizer& file_size,
                          EncodeReport& report);
 

@@ -37,8 +37,12 @@ double rebuilt_squared_error(const SourceImage& image, const CodingPlan& plan, c
       for (std::size_t y = 0; y < bh; ++y)
         for (std::size_t x = 0; x < bw; ++x)
           indices[y * bw + x] = quantize(coefficients[(y0 + y) * w + x0 + x], job.inverse_step);
+      int received = passes[t][job.block_index][static_cast<std::size_t>(layer)];
+      if (!coded.ht_candidates.empty())  // HT: the chosen cleanup, as EBCOT's cleanup of the same plane
+        received = ebcot_equivalent_passes(coded.ht_candidates[job.block_index],
+                                           coded.blocks[job.block_index].bit_planes, received);
       t1::reconstruct(indices, job.width, job.height, job.orientation, coded.block_magnitude_bitplanes[job.block_index],
-                      params.block_style, passes[t][job.block_index][static_cast<std::size_t>(layer)], values);
+                      params.block_style, received, values);
       std::vector<float>& plane = planes[job.component];
       for (std::size_t y = 0; y < bh; ++y)
         for (std::size_t x = 0; x < bw; ++x) plane[(y0 + y) * w + x0 + x] = values[y * bw + x] * job.step;

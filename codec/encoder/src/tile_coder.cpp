@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "component_transform.h"
+#include "ht_rate.h"
 #include "codec/ht/ht_block_encoder.h"
 #include "codec/encoder/encoder.h"
 #include "quantization.h"
@@ -353,12 +354,7 @@ std::vector<BlockJob> block_jobs(const Tile& tile, const CodingPlan& plan, bool 
   return jobs;
 }
 
-// A sample of a tile's code-blocks that stands for all of them: each sampled block with the number
-// of blocks' worth of coefficients it represents.
-struct BlockSample {
-  std::vector<std::size_t> blocks;
-  std::vector<double> scale;
-};
+}  // namespace
 
 // Stratified by resolution (their blocks differ most in value: a coarse block is worth many fine
 // ones): resolutions with few blocks are taken whole, the others one block in `stride`, each
@@ -421,6 +417,8 @@ double predict_threshold(const std::vector<BlockJob>& jobs, const CodedTile& cod
   return std::exp2(hi);
 }
 
+namespace {
+
 // Codes the blocks of `sample` (sample_blocks with kSampleStride) and returns the slope threshold they predict. In two
 // steps: a sparser sample coded in full gives a first estimate, the rest of the sample stops far
 // below it (its hulls are then whole wherever the prediction looks), and those of its blocks that
@@ -449,6 +447,15 @@ double code_sample(CodedTile& coded, const BlockSample& sample, const Tier1Targe
 }
 
 }  // namespace
+
+ht::HtBlock load_ht_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params) {
+  const std::ptrdiff_t offset = static_cast<std::ptrdiff_t>(job.y0 * job.plane_width + job.x0);
+  const auto stride = static_cast<std::ptrdiff_t>(job.plane_width);
+  if (params.lossless)
+    return ht::load_ht_block(t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height});
+  return ht::load_ht_block(
+      t1::FloatBlock{coded.coefficients[job.component].data() + offset, stride, job.width, job.height, job.inverse_step});
+}
 
 t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params,
                             int magnitude_bitplanes, t1::StopRule stop) {
@@ -504,7 +511,12 @@ CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const Cod
   };
   std::vector<std::size_t> all(coded.jobs.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-  if (target.kind == Tier1Target::Kind::None || target.value <= 0 || coded.jobs.size() < 64) {
+  if (params.ht && !params.layers.empty()) {
+    // HT under a target: cleanups from the planes near each block's predicted truncation (ht_rate.h).
+    code_ht_candidates(coded, params, target, pool, [&] {
+      if (params.progress) params.progress(progress_base + finished.fetch_add(1) + 1, progress_total);
+    });
+  } else if (target.kind == Tier1Target::Kind::None || target.value <= 0 || coded.jobs.size() < 64) {
     run(all, {});
   } else {
     // Code only what the budget keeps: a sample of the blocks, the threshold it predicts, then every

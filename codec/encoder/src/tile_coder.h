@@ -9,9 +9,11 @@
 #include "codec/encoder/params.h"
 #include "codec/encoder/source_image.h"
 #include "codec/structure/tile.h"
+#include "codec/ht/ht_block_encoder.h"
 #include "codec/t1/block_encoder.h"
 #include "dwt/backend.h"
 #include "base/thread_pool.h"
+#include "ht_candidates.h"
 #include "imageio/plane_memory.h"
 
 namespace codec {
@@ -84,6 +86,10 @@ struct CodedTile {
   std::vector<BlockJob> jobs;  // every block, indexed by CodeBlock::index: where it lies, its weight, its step
   double stop_threshold = 0;                         // the StopRule tier-1 ran with; 0: every pass
   std::vector<int> guard_bits_needed;    // per component: the fewest guard bits its coefficients fit in
+  // HT under a byte or PSNR target: per block, the cleanups coded from several planes, which
+  // `blocks` then holds as truncation points (ht_candidates.h) until rate control settles on one.
+  // Empty otherwise.
+  std::vector<HtCandidates> ht_candidates;
 };
 
 // The whole image's coding parameters that every tile shares.
@@ -118,6 +124,22 @@ CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const Cod
 // Tier-1 of one block of a coded tile, from its kept coefficients.
 t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params,
                             int magnitude_bitplanes, t1::StopRule stop = {});
+
+// A code-block loaded for the HT coder from a coded tile's kept coefficients (quantised as loaded).
+ht::HtBlock load_ht_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params);
+
+// A sample of a tile's code-blocks that stands for all of them: each sampled block with the number
+// of blocks' worth of coefficients it represents. Stratified by resolution (see kSampleStride).
+struct BlockSample {
+  std::vector<std::size_t> blocks;
+  std::vector<double> scale;
+};
+BlockSample sample_blocks(const std::vector<BlockJob>& jobs, std::size_t stride);
+
+// The slope threshold at which a sample of coded blocks, scaled up, spends the tile's bytes or
+// leaves the tile's squared error (`target`), from the blocks' passes as rate control sees them.
+double predict_threshold(const std::vector<BlockJob>& jobs, const CodedTile& coded, const BlockSample& sample,
+                         const Tier1Target& target);
 
 // Code-blocks of the whole image, for progress reports.
 std::size_t count_code_blocks(const CodingPlan& plan);

@@ -13,66 +13,90 @@
 namespace codec::ht {
 namespace {
 
-// A block as the cleanup pass takes it: magnitudes and signs, row by row, and for irreversible
-// coding the fractions the indices drop.
-struct LoadedBlock {
-  int width = 0, height = 0;
-  std::vector<std::uint32_t> magnitudes;
-  std::vector<std::uint8_t> negative;
-  std::vector<std::uint8_t> fractions;  // empty: reversible
-};
-
 void check_size(int width, int height) {
   if (width < 1 || height < 1 || width > 1024 || height > 1024 || width * height > 4096)
     throw std::invalid_argument("HT block: a code-block of " + std::to_string(width) + "x" + std::to_string(height) +
                                 " is outside 1..1024 with at most 4096 samples");
 }
 
-LoadedBlock load(std::span<const std::int32_t> coefficients, int width, int height, std::span<const std::uint8_t> fractions) {
-  check_size(width, height);
-  const auto n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-  if (coefficients.size() != n) throw std::invalid_argument("HT block: expected width * height coefficients");
-  if (!fractions.empty() && fractions.size() != n) throw std::invalid_argument("HT block: expected one fraction per coefficient");
-  LoadedBlock b{width, height, std::vector<std::uint32_t>(n), std::vector<std::uint8_t>(n), {}};
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::int32_t c = coefficients[i];
-    b.magnitudes[i] = c < 0 ? static_cast<std::uint32_t>(0) - static_cast<std::uint32_t>(c) : static_cast<std::uint32_t>(c);
-    b.negative[i] = c < 0 ? 1 : 0;
-  }
-  b.fractions.assign(fractions.begin(), fractions.end());
-  return b;
+// The coefficient's magnitude in index units: the index plus, for irreversible coding, its fraction.
+double value_of(const HtBlock& b, std::size_t i) {
+  return static_cast<double>(b.magnitudes[i]) + (b.fractions.empty() ? 0.0 : b.fractions[i] / 256.0);
 }
 
+// Half the interval a decoder still has for a significant magnitude after a cleanup on plane p: the
+// mid-point rule; at p = 0 the index is exact, and an irreversible coefficient is placed at
+// index + 1/2 (as EBCOT's passes assume, codec/src/t1/distortion.h).
+double half_interval(const HtBlock& b, int p) { return !b.fractions.empty() || p > 0 ? std::ldexp(1.0, p) / 2 : 0.0; }
+
 // Squared error in the passes' units before any pass (the energy) and after the cleanup on plane
-// p, with a significant magnitude reconstructed at the middle of what the decoder knows of it:
-// exactly at p = 0 for indices, at index + 1/2 for irreversible coefficients.
+// p, with a significant magnitude reconstructed at the middle of what the decoder knows of it.
 struct ErrorSums {
   double energy = 0, after_cleanup = 0;
 };
 
-ErrorSums error_sums(const LoadedBlock& b, int p) {
+ErrorSums error_sums(const HtBlock& b, int p) {
   ErrorSums s;
-  const bool irreversible = !b.fractions.empty();
-  const double half_step = irreversible || p > 0 ? std::ldexp(1.0, p) / 2 : 0.0;
+  const double half = half_interval(b, p), step = std::ldexp(1.0, p);
   for (std::size_t i = 0; i < b.magnitudes.size(); ++i) {
-    const double value = static_cast<double>(b.magnitudes[i]) + (irreversible ? b.fractions[i] / 256.0 : 0.0);
+    const double value = value_of(b, i);
     s.energy += value * value;
     const std::uint32_t mu = b.magnitudes[i] >> p;
-    const double residual = mu == 0 ? value : value - (std::ldexp(static_cast<double>(mu), p) + half_step);
+    const double residual = mu == 0 ? value : value - (static_cast<double>(mu) * step + half);
     s.after_cleanup += residual * residual;
   }
   return s;
 }
 
-t1::EncodedBlock encode_loaded(const LoadedBlock& b, int magnitude_bitplanes, int cleanup_plane, t1::Distortion distortion) {
+}  // namespace
+
+HtBlock load_ht_block(std::span<const std::int32_t> coefficients, int width, int height, std::span<const std::uint8_t> fractions) {
+  check_size(width, height);
+  const auto n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  if (coefficients.size() != n) throw std::invalid_argument("HT block: expected width * height coefficients");
+  if (!fractions.empty() && fractions.size() != n) throw std::invalid_argument("HT block: expected one fraction per coefficient");
+  HtBlock b{width, height, std::vector<std::uint32_t>(n), std::vector<std::uint8_t>(n), {}, 0};
+  std::uint32_t all = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int32_t c = coefficients[i];
+    b.magnitudes[i] = c < 0 ? static_cast<std::uint32_t>(0) - static_cast<std::uint32_t>(c) : static_cast<std::uint32_t>(c);
+    b.negative[i] = c < 0 ? 1 : 0;
+    all |= b.magnitudes[i];
+  }
+  b.fractions.assign(fractions.begin(), fractions.end());
+  b.bit_planes = static_cast<int>(std::bit_width(all));
+  return b;
+}
+
+HtBlock load_ht_block(const t1::IntegerBlock& block) {
+  check_size(block.width, block.height);
+  std::vector<std::int32_t> indices(static_cast<std::size_t>(block.width) * static_cast<std::size_t>(block.height));
+  for (int y = 0; y < block.height; ++y)
+    std::copy_n(block.origin + y * block.stride, block.width, indices.begin() + static_cast<std::ptrdiff_t>(y) * block.width);
+  return load_ht_block(indices, block.width, block.height);
+}
+
+HtBlock load_ht_block(const t1::FloatBlock& block) {
+  check_size(block.width, block.height);
+  const auto n = static_cast<std::size_t>(block.width) * static_cast<std::size_t>(block.height);
+  std::vector<std::int32_t> indices(n);
+  std::vector<std::uint8_t> fractions(n);
+  for (int y = 0; y < block.height; ++y) {
+    const float* row = block.origin + y * block.stride;
+    const std::size_t base = static_cast<std::size_t>(y) * static_cast<std::size_t>(block.width);
+    for (int x = 0; x < block.width; ++x)
+      indices[base + static_cast<std::size_t>(x)] = t1::quantize(row[x], block.inverse_step, fractions[base + static_cast<std::size_t>(x)]);
+  }
+  return load_ht_block(indices, block.width, block.height, fractions);
+}
+
+t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int cleanup_plane, t1::Distortion distortion) {
   if (magnitude_bitplanes < 1 || magnitude_bitplanes > 31)
     throw std::invalid_argument("HT block: Mb must be 1..31, not " + std::to_string(magnitude_bitplanes));
   if (cleanup_plane < 0 || cleanup_plane >= magnitude_bitplanes)
     throw std::invalid_argument("HT block: the cleanup plane must be 0..Mb - 1, not " + std::to_string(cleanup_plane));
-  std::uint32_t all = 0;
-  for (std::uint32_t m : b.magnitudes) all |= m;
   t1::EncodedBlock out;
-  out.bit_planes = static_cast<int>(std::bit_width(all));
+  out.bit_planes = b.bit_planes;
   if (out.bit_planes > magnitude_bitplanes)
     throw std::invalid_argument("HT block: a magnitude needs " + std::to_string(out.bit_planes) + " bit-planes, over Mb = " +
                                 std::to_string(magnitude_bitplanes));
@@ -92,36 +116,73 @@ t1::EncodedBlock encode_loaded(const LoadedBlock& b, int magnitude_bitplanes, in
   return out;
 }
 
-}  // namespace
+std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
+  const int planes = b.bit_planes;
+  std::vector<PlaneStatistics> out(static_cast<std::size_t>(planes) + 1);
+  // Errors: a magnitude below 2^p leaves its whole value, gathered per bit length and summed over
+  // the planes at or above it; one at or above 2^p leaves its residual at p, summed plane by plane.
+  std::vector<double> insignificant(static_cast<std::size_t>(planes) + 1, 0.0);
+  for (std::size_t i = 0; i < b.magnitudes.size(); ++i) {
+    const std::uint32_t m = b.magnitudes[i];
+    const double value = value_of(b, i);
+    const int length = static_cast<int>(std::bit_width(m));
+    insignificant[static_cast<std::size_t>(length)] += value * value;
+    for (int p = 0; p < length; ++p) {
+      const double step = std::ldexp(1.0, p);
+      const double residual = value - (static_cast<double>(m >> p) * step + half_interval(b, p));
+      out[static_cast<std::size_t>(p)].error += residual * residual;
+    }
+  }
+  double below = 0;
+  for (int p = 0; p <= planes; ++p) {
+    below += insignificant[static_cast<std::size_t>(p)];
+    out[static_cast<std::size_t>(p)].error += below;
+  }
+  // Counts, quad by quad (T.814 7.3.1: 2x2 quads, samples outside the block insignificant).
+  std::vector<std::int64_t> quads(static_cast<std::size_t>(planes), 0), samples(quads.size(), 0), bits(quads.size(), 0);
+  for (int y0 = 0; y0 < b.height; y0 += 2)
+    for (int x0 = 0; x0 < b.width; x0 += 2) {
+      std::uint32_t m[4] = {0, 0, 0, 0};
+      for (int k = 0; k < 4; ++k) {
+        const int x = x0 + (k >> 1), y = y0 + (k & 1);
+        if (x < b.width && y < b.height)
+          m[k] = b.magnitudes[static_cast<std::size_t>(y) * static_cast<std::size_t>(b.width) + static_cast<std::size_t>(x)];
+      }
+      const std::uint32_t largest = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
+      const int length = static_cast<int>(std::bit_width(largest));
+      for (int p = 0; p < length; ++p) {
+        int significant = 0;
+        for (std::uint32_t v : m) significant += (v >> p) != 0 ? 1 : 0;
+        // U_q before the exponent predictor: the bit length of 2 mu - 1 for the quad's largest mu
+        // (T.814 7.3.7).
+        const int exponent = static_cast<int>(std::bit_width(2 * (largest >> p) - 1));
+        ++quads[static_cast<std::size_t>(p)];
+        samples[static_cast<std::size_t>(p)] += significant;
+        bits[static_cast<std::size_t>(p)] += significant * exponent;
+      }
+    }
+  for (int p = 0; p < planes; ++p) {
+    out[static_cast<std::size_t>(p)].significant_quads = static_cast<double>(quads[static_cast<std::size_t>(p)]);
+    out[static_cast<std::size_t>(p)].significant_samples = static_cast<double>(samples[static_cast<std::size_t>(p)]);
+    out[static_cast<std::size_t>(p)].magnitude_bits = static_cast<double>(bits[static_cast<std::size_t>(p)]);
+  }
+  return out;
+}
 
 t1::EncodedBlock encode_ht_block(std::span<const std::int32_t> coefficients, int width, int height,
                                  int magnitude_bitplanes, int cleanup_plane, std::span<const std::uint8_t> fractions,
                                  t1::Distortion distortion) {
-  return encode_loaded(load(coefficients, width, height, fractions), magnitude_bitplanes, cleanup_plane, distortion);
+  return encode_ht_block(load_ht_block(coefficients, width, height, fractions), magnitude_bitplanes, cleanup_plane, distortion);
 }
 
 t1::EncodedBlock encode_ht_block(const t1::IntegerBlock& block, int magnitude_bitplanes, int cleanup_plane,
                                  t1::Distortion distortion) {
-  check_size(block.width, block.height);
-  std::vector<std::int32_t> indices(static_cast<std::size_t>(block.width) * static_cast<std::size_t>(block.height));
-  for (int y = 0; y < block.height; ++y)
-    std::copy_n(block.origin + y * block.stride, block.width, indices.begin() + static_cast<std::ptrdiff_t>(y) * block.width);
-  return encode_ht_block(indices, block.width, block.height, magnitude_bitplanes, cleanup_plane, {}, distortion);
+  return encode_ht_block(load_ht_block(block), magnitude_bitplanes, cleanup_plane, distortion);
 }
 
 t1::EncodedBlock encode_ht_block(const t1::FloatBlock& block, int magnitude_bitplanes, int cleanup_plane,
                                  t1::Distortion distortion) {
-  check_size(block.width, block.height);
-  const auto n = static_cast<std::size_t>(block.width) * static_cast<std::size_t>(block.height);
-  std::vector<std::int32_t> indices(n);
-  std::vector<std::uint8_t> fractions(n);
-  for (int y = 0; y < block.height; ++y) {
-    const float* row = block.origin + y * block.stride;
-    const std::size_t base = static_cast<std::size_t>(y) * static_cast<std::size_t>(block.width);
-    for (int x = 0; x < block.width; ++x)
-      indices[base + static_cast<std::size_t>(x)] = t1::quantize(row[x], block.inverse_step, fractions[base + static_cast<std::size_t>(x)]);
-  }
-  return encode_ht_block(indices, block.width, block.height, magnitude_bitplanes, cleanup_plane, fractions, distortion);
+  return encode_ht_block(load_ht_block(block), magnitude_bitplanes, cleanup_plane, distortion);
 }
 
 }  // namespace codec::ht

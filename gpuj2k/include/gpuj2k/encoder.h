@@ -109,8 +109,9 @@ struct EncodeOptions {
   int threads = 0;                 // worker threads for this encode; 0: one per hardware thread
   DwtDevice dwt = DwtDevice::Auto;
   bool code_every_pass = false;    // with a target: no pass skipping (the same file, slower)
-  // HTJ2K (Part 15): every code-block through the high-throughput block coder (one cleanup pass;
-  // no rate or quality targets and no EBCOT mode switches yet).
+  // HTJ2K (Part 15): every code-block through the high-throughput block coder (one cleanup pass,
+  // from the bit-plane rate control picks when there is a target; one quality layer only; no EBCOT
+  // mode switches).
   bool ht = false;
   // Called from worker threads as code-blocks finish (must be thread-safe): blocks done and the
   // total. Returning false cancels the encode, which then throws Error("encode cancelled").

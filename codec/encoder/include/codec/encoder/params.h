@@ -43,8 +43,8 @@ struct EncodeParams {
   t1::BlockStyle block_style{};
   // HT block coding (ITU-T T.814 | ISO/IEC 15444-15) for every code-block instead of EBCOT: the
   // codestream gets a CAP marker (Ccap15), Rsiz bit 14 and the HT code-block style bit. Each block
-  // is coded by one cleanup pass on bit-plane 0, so byte and PSNR targets are not taken yet, and
-  // the EBCOT mode switches (block_style) do not apply.
+  // is coded by one cleanup pass: on bit-plane 0 without a target; with one (a single layer only),
+  // from the plane rate control picks per block. The EBCOT mode switches (block_style) do not apply.
   bool ht = false;
   int guard_bits = -1;                // -1: 2 for lossless, 1 for lossy
   int threads = 0;                    // 0: all hardware threads

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "codec/t1/block_encoder.h"
 
@@ -33,5 +34,40 @@ t1::EncodedBlock encode_ht_block(const t1::IntegerBlock& block, int magnitude_bi
                                  t1::Distortion distortion = t1::Distortion::Measured);
 t1::EncodedBlock encode_ht_block(const t1::FloatBlock& block, int magnitude_bitplanes, int cleanup_plane = 0,
                                  t1::Distortion distortion = t1::Distortion::Measured);
+
+// A code-block loaded once for coding from several cleanup planes (rate control's candidates):
+// magnitudes and signs row by row, and for irreversible coding the fractions the indices drop.
+struct HtBlock {
+  int width = 0, height = 0;
+  std::vector<std::uint32_t> magnitudes;
+  std::vector<std::uint8_t> negative;   // non-zero: negative
+  std::vector<std::uint8_t> fractions;  // empty: reversible
+  int bit_planes = 0;                   // the highest set bit of any magnitude, plus one
+};
+
+HtBlock load_ht_block(std::span<const std::int32_t> coefficients, int width, int height,
+                      std::span<const std::uint8_t> fractions = {});
+HtBlock load_ht_block(const t1::IntegerBlock& block);
+HtBlock load_ht_block(const t1::FloatBlock& block);
+
+// encode_ht_block on a loaded block.
+t1::EncodedBlock encode_ht_block(const HtBlock& block, int magnitude_bitplanes, int cleanup_plane,
+                                 t1::Distortion distortion = t1::Distortion::Measured);
+
+// What a cleanup from bit-plane p leaves and what it costs, known without coding it: the squared
+// error a decoder is left with (mid-point reconstruction, in EncodedBlock's units), and the counts
+// the cleanup's length follows (T.814 7.3: a quad with no significant sample costs a MEL symbol at
+// most; a significant one a CxtVLC codeword and a U-VLC residual; each significant sample about
+// U_q MagSgn bits, U_q the bit length of the quad's largest magnitude at that plane).
+struct PlaneStatistics {
+  double error = 0;
+  double significant_quads = 0;
+  double significant_samples = 0;
+  double magnitude_bits = 0;  // the sum over significant samples of their quad's magnitude bit length
+};
+
+// One entry per plane p = 0 .. bit_planes - 1, then one for nothing coded (error: the block's
+// energy, counts 0). Linear in the samples times the bit-planes they use.
+std::vector<PlaneStatistics> plane_statistics(const HtBlock& block);
 
 }  // namespace codec::ht

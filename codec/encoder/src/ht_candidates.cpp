@@ -1,0 +1,62 @@
+#include "ht_candidates.h"
+
+namespace codec {
+
+int HtCandidates::highest_coded() const {
+  for (int p = static_cast<int>(by_plane.size()) - 1; p >= 0; --p)
+    if (by_plane[static_cast<std::size_t>(p)]) return p;
+  return -1;
+}
+
+int HtCandidates::lowest_coded() const {
+  for (std::size_t p = 0; p < by_plane.size(); ++p)
+    if (by_plane[p]) return static_cast<int>(p);
+  return -1;
+}
+
+void add_candidates(HtCandidates& candidates, const ht::HtBlock& block, std::span<const int> planes) {
+  candidates.by_plane.resize(static_cast<std::size_t>(block.bit_planes));
+  for (const int p : planes) {
+    std::optional<t1::EncodedBlock>& slot = candidates.by_plane[static_cast<std::size_t>(p)];
+    if (!slot) slot = ht::encode_ht_block(block, 31, p);
+  }
+  candidates.skipped = false;
+}
+
+t1::EncodedBlock truncation_points(HtCandidates& candidates, int bit_planes, double energy) {
+  t1::EncodedBlock out;
+  out.bit_planes = bit_planes;
+  out.energy = energy;
+  out.stopped_early = candidates.skipped;
+  // The cleanups kept, highest plane first, as a stack: a new one no longer than the top's leaves
+  // the top dominated (as many bytes or fewer, and it codes more).
+  std::vector<int>& kept = candidates.pass_planes;
+  kept.clear();
+  auto length_of = [&](int p) { return candidates.by_plane[static_cast<std::size_t>(p)]->passes[0].length; };
+  for (int p = static_cast<int>(candidates.by_plane.size()) - 1; p >= 0; --p) {
+    if (!candidates.by_plane[static_cast<std::size_t>(p)]) continue;
+    while (!kept.empty() && length_of(kept.back()) >= length_of(p)) kept.pop_back();
+    kept.push_back(p);
+  }
+  double decreased = 0;
+  for (const int p : kept) {
+    const t1::PassInfo& pass = candidates.by_plane[static_cast<std::size_t>(p)]->passes[0];
+    out.passes.push_back(t1::PassInfo{pass.length, pass.distortion_decrease - decreased, true});
+    decreased = pass.distortion_decrease;
+  }
+  return out;
+}
+
+void sync_missing_msbs(HtCandidates& candidates, const t1::EncodedBlock& points) {
+  for (std::size_t p = 0; p < candidates.by_plane.size(); ++p)
+    if (candidates.by_plane[p])
+      candidates.by_plane[p]->missing_msbs = points.missing_msbs + points.bit_planes - 1 - static_cast<int>(p);
+}
+
+int ebcot_equivalent_passes(const HtCandidates& candidates, int bit_planes, int passes) {
+  if (passes == 0) return 0;
+  // EBCOT's pass 0 is the cleanup of the top plane, and each plane below adds three passes.
+  return 3 * (bit_planes - 1 - candidates.pass_planes[static_cast<std::size_t>(passes) - 1]) + 1;
+}
+
+}  // namespace codec

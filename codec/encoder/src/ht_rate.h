@@ -1,0 +1,64 @@
+#pragma once
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "codec/encoder/params.h"
+#include "rate_control.h"
+#include "tile_coder.h"
+#include "base/thread_pool.h"
+
+namespace codec {
+
+// Rate control for HT code-blocks (README, "HT rate control"). An HT block's truncation points are
+// cleanups coded from different bit-planes (ht_candidates.h), each a codeword of its own, so
+// coding them all would cost a cleanup per plane. Instead, as EBCOT's pass skipping does, a
+// sample of the blocks is coded from every plane and predicts the final slope threshold; every
+// other block then gets its cleanups' distortions exactly and their lengths estimated from
+// counts of significant quads and magnitude bits (ht::plane_statistics, scaled by what the
+// sample's cleanups really took), and only the cleanups from the plane that estimate picks at
+// the threshold and the planes on either side are coded. After the allocation, blocks whose
+// choice lies at the edge of what was coded get the next planes coded (ht_blocks_at_edges) and
+// the allocation is redone.
+
+// Tier-1 of a tile's HT blocks under a target: fills coded.ht_candidates, and coded.blocks with
+// their truncation points. With no target to predict from (or few blocks) every block gets every
+// plane. `block_done` is called once per block, from any worker thread.
+void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier1Target& target,
+                        base::ThreadPool& pool, const std::function<void()>& block_done);
+
+// A block whose allocation might change with more planes coded, and those planes.
+struct HtExtension {
+  std::size_t tile = 0, block = 0;
+  std::vector<int> planes;
+};
+
+// The blocks of an allocation (`passes`, rate_control.h) that may be cut short by what was coded:
+// one whose choice is the highest cleanup coded (or nothing) while higher planes are uncoded (a
+// cleanup from higher up might be worth its bytes at the threshold where this one is not), one
+// whose choice is the lowest cleanup coded above plane 0, and one skipped whose energy, bought
+// with one byte, reaches `lowest_slope` (the lowest slope the allocation takes).
+std::vector<HtExtension> ht_blocks_at_edges(const std::vector<CodedTile>& tiles, const LayerPasses& passes,
+                                            double lowest_slope);
+
+// Codes the extensions' planes (in parallel on `pool`) and updates the blocks' truncation points.
+void extend_ht_candidates(std::vector<CodedTile>& tiles, const std::vector<HtExtension>& extensions,
+                          const EncodeParams& params, base::ThreadPool& pool);
+
+// Before measuring trial files: every coded cleanup's missing_msbs from its block's settled Mb.
+void sync_ht_missing_msbs(std::vector<CodedTile>& tiles);
+
+// After the allocation: each block's chosen cleanup takes the place of its truncation points, as
+// one pass in the first layer that has any (T.814: an HT code-block's one cleanup segment), and the
+// candidates are dropped. The tiles then look as if tier-1 had coded that cleanup alone.
+void settle_ht_choices(std::vector<CodedTile>& tiles, LayerPasses& passes);
+
+// Tier-2's view of one block while candidates are open: the cleanup a truncation after
+// `cumulative_passes` (per layer) points stands for, and one pass in each layer that has any.
+struct HtPacketPlan {
+  const t1::EncodedBlock* encoded = nullptr;
+  std::vector<int> cumulative_passes;
+};
+HtPacketPlan ht_packet_plan(const CodedTile& coded, std::size_t block, const std::vector<int>& cumulative_passes);
+
+}  // namespace codec

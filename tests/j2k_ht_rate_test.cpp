@@ -1,0 +1,246 @@
+// Rate control for HT code-blocks (EncodeParams::ht with byte or PSNR targets), checked from
+// outside: files meet byte targets within [99.5 %, 100 %], decode in OpenJPEG, Grok and OpenJPH
+// alike, meet PSNR targets, lose nothing to candidate skipping against coding every plane, and how
+// far they fall behind our EBCOT encode at the same size is bounded and reported.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <thread>
+#include <vector>
+
+#include "codec/encoder/encoder.h"
+#include "imageio/read.h"
+#include "support/external_decode.h"
+#include "support/scratch_dir.h"
+#include "support/shared_assets.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using Scratch = test_support::ScratchDir;
+using test_support::decode_with;
+using test_support::write_bytes;
+
+// PSNR over every sample of every channel, peak 255.
+double psnr_rgb(const imageio::Image& a, const imageio::Image& b) {
+  double se = 0;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+    const double d = a.pixels[i] - b.pixels[i];
+    se += d * d;
+  }
+  const double mse = se / static_cast<double>(a.pixels.size());
+  return mse == 0 ? INFINITY : 10 * std::log10(255.0 * 255.0 / mse);
+}
+
+codec::EncodeParams at(double bytes, bool ht) {
+  codec::EncodeParams p;
+  p.lossless = false;
+  p.ht = ht;
+  p.dwt = codec::DwtDevice::Cpu;
+  p.threads = 1;  // the cases run two at a time
+  p.layers = {{codec::LayerTarget::Kind::Bytes, bytes}};
+  return p;
+}
+
+// The Kodak photographs there are (../shared holds 16).
+std::vector<int> photographs() {
+  std::vector<int> found;
+  for (int i = 1; i <= 24; ++i)
+    if (fs::exists(test_support::kodak_photo(i))) found.push_back(i);
+  return found;
+}
+
+// Runs case(k) for k < count on two threads: the CI machine's two cores, each encode on one.
+void run_two_at_a_time(std::size_t count, const std::function<void(std::size_t)>& one_case) {
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t k = next++; k < count; k = next++) one_case(k);
+  };
+  std::thread other(worker);
+  worker();
+  other.join();
+}
+
+// Encodes and decodes with opj_decompress; PSNR over RGB.
+struct Coded {
+  std::size_t bytes = 0;
+  double db = 0;
+};
+
+Coded encode_and_measure(const imageio::Image& img, const codec::EncodeParams& p, const Scratch& s, const std::string& name) {
+  const auto bytes = codec::encode(codec::to_source_image(img, "image"), p, codec::FileFormat::Codestream);
+  write_bytes(s / (name + ".j2k"), bytes);
+  const imageio::Image back = decode_with("opj_decompress", s / (name + ".j2k"), s / (name + ".png"));
+  return Coded{bytes.size(), psnr_rgb(img, back)};
+}
+
+constexpr double kRates[] = {0.25, 0.75, 2.0};
+
+// The photographs at 0.25, 0.75 and 2 bpp: the HT file is within [99.5 %, 100 %] of its target,
+// and its PSNR over RGB is compared with our EBCOT encode of the same target (decoded by
+// opj_decompress). Measured on the 16 photographs (README, "HT rate control"): mean -0.60 / -0.80
+// / -0.94 dB, worst -1.05 / -1.19 / -1.72 dB at the three rates. Issue 16 asks for 0.5 dB; the
+// cleanup-only HT coder does not reach it (one truncation point per bit-plane, and HT's coding
+// costs some 6 % more bytes than EBCOT's at the same quantisation). The bounds below keep what is
+// reached from regressing.
+TEST(J2kHtRate, ByteTargetsOnTheKodakPhotographs) {
+  const std::vector<int> photos = photographs();
+  if (photos.empty()) GTEST_SKIP() << "no Kodak photographs under " << (test_support::shared_dir() / "testimages" / "kodak");
+  struct Case {
+    int photo = 0;
+    double bpp = 0;
+    double target = 0;
+    Coded ht, ebcot;
+    std::string error;
+  };
+  std::vector<Case> cases;
+  // Every photograph at 0.75 bpp, the first four at the other rates: the suite's time is bounded
+  // (the README records all 16 at all three rates).
+  for (int photo : photos)
+    for (double bpp : kRates)
+      if (bpp == 0.75 || photo <= 4) {
+        Case c;
+        c.photo = photo, c.bpp = bpp;
+        cases.push_back(c);
+      }
+  run_two_at_a_time(cases.size(), [&](std::size_t k) {
+    Case& c = cases[k];
+    try {
+      const imageio::Image img = imageio::read_image(test_support::kodak_photo(c.photo).string());
+      c.target = std::floor(c.bpp * img.width * img.height / 8);
+      Scratch s;
+      c.ht = encode_and_measure(img, at(c.target, true), s, "ht");
+      c.ebcot = encode_and_measure(img, at(c.target, false), s, "ebcot");
+    } catch (const std::exception& e) {
+      c.error = e.what();
+    }
+  });
+  std::map<double, std::vector<double>> gaps;
+  for (const Case& c : cases) {
+    SCOPED_TRACE("photograph " + std::to_string(c.photo) + " at " + std::to_string(c.bpp) + " bpp");
+    ASSERT_TRUE(c.error.empty()) << c.error;
+    EXPECT_LE(static_cast<double>(c.ht.bytes), c.target);
+    EXPECT_GE(static_cast<double>(c.ht.bytes), 0.995 * c.target);
+    const double gap = c.ht.db - c.ebcot.db;
+    std::printf("kodim%02d %.2f bpp: HT %zu bytes %.3f dB, EBCOT %zu bytes %.3f dB, HT - EBCOT %+.3f dB\n", c.photo, c.bpp,
+                c.ht.bytes, c.ht.db, c.ebcot.bytes, c.ebcot.db, gap);
+    EXPECT_GT(gap, -2.0);
+    gaps[c.bpp].push_back(gap);
+  }
+  for (const auto& [bpp, list] : gaps) {
+    double mean = 0;
+    for (double g : list) mean += g / static_cast<double>(list.size());
+    std::printf("%.2f bpp: HT - EBCOT mean %+.3f dB, worst %+.3f dB over %zu photographs\n", bpp, mean,
+                *std::min_element(list.begin(), list.end()), list.size());
+    EXPECT_GT(mean, -1.1) << "at " << bpp << " bpp";
+  }
+}
+
+// One photograph at the three rates through OpenJPEG, Grok and OpenJPH: every decoder gives the
+// same picture (HT cleanups from many different planes, signalled by the missing MSBs).
+TEST(J2kHtRate, DecodesAlikeInEveryDecoder) {
+  const fs::path file = test_support::kodak_photo(5);
+  REQUIRE_SHARED_FILE(file);
+  const imageio::Image img = imageio::read_image(file.string());
+  for (double bpp : kRates) {
+    SCOPED_TRACE(std::to_string(bpp) + " bpp");
+    Scratch s;
+    codec::EncodeParams p = at(std::floor(bpp * img.width * img.height / 8), true);
+    p.threads = 2;
+    write_bytes(s / "x.j2k", codec::encode(codec::to_source_image(img, "image"), p, codec::FileFormat::Codestream));
+    const double opj = psnr_rgb(img, decode_with("opj_decompress", s / "x.j2k", s / "opj.png"));
+    const double grk = psnr_rgb(img, decode_with("grk_decompress", s / "x.j2k", s / "grk.png", "-H 1"));
+    const double ojph = psnr_rgb(img, decode_with("ojph_expand", s / "x.j2k", s / "ojph.ppm"));
+    EXPECT_GT(opj, bpp < 0.5 ? 20.0 : 25.0);
+    EXPECT_NEAR(grk, opj, 0.01);
+    EXPECT_NEAR(ojph, opj, 0.01);
+  }
+}
+
+// PSNR targets through the rebuild-and-measure loop: the decoded PSNR lands in [target, target + 0.3].
+TEST(J2kHtRate, PsnrTargetsLandJustAbove) {
+  const fs::path file = test_support::kodak_photo(5);
+  REQUIRE_SHARED_FILE(file);
+  const imageio::Image img = imageio::read_image(file.string());
+  for (double db : {30.0, 38.0}) {
+    SCOPED_TRACE(std::to_string(db) + " dB");
+    Scratch s;
+    codec::EncodeParams p = at(0, true);
+    p.threads = 2;
+    p.layers = {{codec::LayerTarget::Kind::Psnr, db}};
+    const Coded c = encode_and_measure(img, p, s, "x");
+    std::printf("target %.0f dB: %.3f dB in %zu bytes\n", db, c.db, c.bytes);
+    EXPECT_GE(c.db, db);
+    EXPECT_LE(c.db, db + 0.3);
+  }
+}
+
+// Coding only the cleanups near each block's estimated cut (and more where the allocation lands on
+// the edge of what was coded) against coding every plane of every block: the same file, or where
+// it differs a PSNR within 0.01 dB. Not identical by construction: a plane that is not on the hull
+// of every plane can be on the hull of the three coded, and be chosen, where full coding takes a
+// neighbour; and the greedy fill of the last bytes then differs. Measured on photographs 1-4 at
+// the three rates: 5 of 12 files identical, the others -0.005 to +0.005 dB.
+TEST(J2kHtRate, CandidateSkippingIsNoWorseThanCodingEveryPlane) {
+  std::vector<int> photos = photographs();
+  if (photos.empty()) GTEST_SKIP() << "no Kodak photographs under " << (test_support::shared_dir() / "testimages" / "kodak");
+  photos.resize(std::min<std::size_t>(photos.size(), 4));
+  struct Case {
+    int photo = 0;
+    double bpp = 0;
+    bool identical = false;
+    double skipped_db = 0, full_db = 0;
+    std::string error;
+  };
+  std::vector<Case> cases;
+  // Every photograph at 0.75 bpp, the first four at the other rates: the suite's time is bounded
+  // (the README records all 16 at all three rates).
+  for (int photo : photos)
+    for (double bpp : kRates)
+      if (bpp == 0.75 || photo <= 4) {
+        Case c;
+        c.photo = photo, c.bpp = bpp;
+        cases.push_back(c);
+      }
+  run_two_at_a_time(cases.size(), [&](std::size_t k) {
+    Case& c = cases[k];
+    try {
+      const imageio::Image img = imageio::read_image(test_support::kodak_photo(c.photo).string());
+      codec::EncodeParams p = at(std::floor(c.bpp * img.width * img.height / 8), true);
+      const auto source = codec::to_source_image(img, "image");
+      const auto skipped = codec::encode(source, p, codec::FileFormat::Codestream);
+      p.skip_passes = false;
+      const auto full = codec::encode(source, p, codec::FileFormat::Codestream);
+      c.identical = skipped == full;
+      if (c.identical) return;
+      Scratch s;
+      write_bytes(s / "skipped.j2k", skipped);
+      write_bytes(s / "full.j2k", full);
+      c.skipped_db = psnr_rgb(img, decode_with("opj_decompress", s / "skipped.j2k", s / "skipped.png"));
+      c.full_db = psnr_rgb(img, decode_with("opj_decompress", s / "full.j2k", s / "full.png"));
+    } catch (const std::exception& e) {
+      c.error = e.what();
+    }
+  });
+  int identical = 0;
+  for (const Case& c : cases) {
+    SCOPED_TRACE("photograph " + std::to_string(c.photo) + " at " + std::to_string(c.bpp) + " bpp");
+    ASSERT_TRUE(c.error.empty()) << c.error;
+    if (c.identical) {
+      ++identical;
+      continue;
+    }
+    std::printf("kodim%02d %.2f bpp: files differ: %.4f dB skipping, %.4f dB coding every plane\n", c.photo, c.bpp,
+                c.skipped_db, c.full_db);
+    EXPECT_GE(c.skipped_db, c.full_db - 0.01);
+  }
+  std::printf("candidate skipping gave the every-plane file in %d of %zu cases\n", identical, cases.size());
+}
+
+}  // namespace
