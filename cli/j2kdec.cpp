@@ -15,16 +15,9 @@
 #include "imageio/error.h"
 #include "imageio/write.h"
 #include "base/one_line.h"
+#include "file_names.h"
 
 namespace {
-
-std::string lower_extension(const std::string& path) {
-  const auto dot = path.find_last_of('.');
-  if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return "";
-  std::string ext = path.substr(dot);
-  for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  return ext;
-}
 
 // PGX as the conformance suite and opj_decompress use it: "PG ML +|- depth width height\n", then
 // big-endian samples of 1, 2 or 4 bytes.
@@ -94,7 +87,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  const std::string ext = lower_extension(output);
+  const std::string ext = cli::lower_extension(output);
   try {
     codec::DecodeOptions options;
     options.reduce = reduce;

@@ -15,6 +15,7 @@
 
 #include "gpuj2k/encoder.h"
 #include "imageio/atomic_write.h"
+#include "file_names.h"
 #include "number_pairs.h"
 #include "base/one_line.h"
 #include "quiet_stderr.h"
@@ -22,14 +23,6 @@
 namespace {
 
 constexpr std::int64_t kMaxCoordinate = (std::int64_t{1} << 32) - 1;
-
-std::string lower_extension(const std::string& path) {
-  const auto dot = path.find_last_of('.');
-  if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return "";
-  std::string ext = path.substr(dot);
-  for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  return ext;
-}
 
 gpuj2k::Progression parse_order(const std::string& name) {
   const char* names[] = {"LRCP", "RLCP", "RPCL", "PCRL", "CPRL"};
@@ -241,7 +234,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    const std::string ext = lower_extension(output);
+    const std::string ext = cli::lower_extension(output);
     gpuj2k::Format format;
     if (ext == ".jp2") format = gpuj2k::Format::Jp2;
     else if (ext == ".j2k" || ext == ".j2c" || ext == ".jpc") format = gpuj2k::Format::Codestream;

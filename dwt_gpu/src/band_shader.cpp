@@ -1,15 +1,9 @@
 #include "band_shader.h"
 
+#include "dwt_shader.h"
+
 namespace dwt_gpu {
 namespace {
-
-// The same full-viewport quad as the DWT passes; the viewport is the band's rectangle.
-constexpr const char* kVertexShader = R"(#version 330 core
-void main() {
-  vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1));
-  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
 
 // Rule numbers follow dwt::BandRule (static_asserts below). The second texture is fetched only
 // when the rule reads it, so a pass over one plane needs no second texture.
@@ -43,7 +37,7 @@ static_assert(static_cast<int>(dwt::BandRule::First) == 0 && static_cast<int>(dw
 
 BandShader BandShader::build(const glc::GlApi& gl) {
   BandShader s;
-  s.program = glc::Program::link(gl, kVertexShader, kFragmentShader, "wavelet band operation");
+  s.program = glc::Program::link(gl, kViewportQuadVertexShader, kFragmentShader, "wavelet band operation");
   s.first = s.program.uniform("u_first");
   s.second = s.program.uniform("u_second");
   s.rule = s.program.uniform("u_rule");

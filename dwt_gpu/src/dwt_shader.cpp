@@ -3,14 +3,6 @@
 namespace dwt_gpu {
 namespace {
 
-// One quad covering the viewport, which each pass sets to the current region.
-constexpr const char* kVertexShader = R"(#version 330 core
-void main() {
-  vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1));
-  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
-
 // Equation 4.10 / 4.14: z(n) = sum_k f(n, k) * lambda'(n, k), with f chosen by the selector alpha
 // and lambda' fetched through the table at base position beta. Everything position-dependent comes
 // from the table, so this shader has no branches on boundaries, parity or direction.
@@ -47,7 +39,7 @@ static_assert(kTapsPerSelector == 9 && kSelectors * kTapsPerSelector == 36, "sha
 
 DwtShader DwtShader::build(const glc::GlApi& gl) {
   DwtShader s;
-  s.program = glc::Program::link(gl, kVertexShader, kFragmentShader, "dwt convolution");
+  s.program = glc::Program::link(gl, kViewportQuadVertexShader, kFragmentShader, "dwt convolution");
   s.source = s.program.uniform("u_source");
   s.table = s.program.uniform("u_table");
   s.row = s.program.uniform("u_row");

@@ -7,6 +7,15 @@
 
 namespace dwt_gpu {
 
+// The vertex shader of every pass: one quad covering the viewport (drawn as a 4-vertex strip with no
+// attributes), which each pass sets to the region it writes.
+inline constexpr const char* kViewportQuadVertexShader = R"(#version 330 core
+void main() {
+  vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1));
+  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
 constexpr int kSelectors = 4;  // first kernel, second kernel, lone even sample, lone odd sample
 constexpr int kTapsPerSelector = dwt::Kernel::kTaps;
 using KernelBank = std::array<float, kSelectors * kTapsPerSelector>;
