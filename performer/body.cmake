@@ -14,7 +14,6 @@ target_sources(gpuj2k_performer PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/src/marching_cubes_cases.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/marching_cubes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/mesh_smooth.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/src/mesh_normals.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/body_mesh.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/skinned_mesh.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/body_weights.cpp

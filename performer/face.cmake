@@ -15,15 +15,7 @@ if(NOT TinyGLTF_FOUND)
 endif()
 
 target_sources(gpuj2k_performer PRIVATE
-  ${CMAKE_CURRENT_LIST_DIR}/src/face_model.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/face_deform.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/src/atomic_file.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/src/mesh_io.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/src/head_grid.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/src/head_shape.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/src/head_pose.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/src/head_poses.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/src/procedural_head.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/morph_mapping.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/gltf_face_read.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/gltf_face_write.cpp)

@@ -4,12 +4,8 @@
 # gpuj2k_performer is defined; paths are spelled from this file so it also works when included
 # from elsewhere.
 target_sources(gpuj2k_performer PRIVATE
-  ${CMAKE_CURRENT_LIST_DIR}/src/phoneme_role.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/phoneme_keyframes.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/src/viseme_error.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/src/viseme_text.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/viseme_table.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/src/viseme_set.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/viseme_library.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/viseme_json.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/viseme_rhubarb.cpp
