@@ -16,6 +16,7 @@
 
 #include "codec/encoder/encoder.h"
 #include "imageio/read.h"
+#include "psnr.h"
 #include "support/external_decode.h"
 #include "support/scratch_dir.h"
 #include "support/shared_assets.h"
@@ -28,15 +29,7 @@ using test_support::decode_with;
 using test_support::write_bytes;
 
 // PSNR over every sample of every channel, peak 255.
-double psnr_rgb(const imageio::Image& a, const imageio::Image& b) {
-  double se = 0;
-  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-    const double d = a.pixels[i] - b.pixels[i];
-    se += d * d;
-  }
-  const double mse = se / static_cast<double>(a.pixels.size());
-  return mse == 0 ? INFINITY : 10 * std::log10(255.0 * 255.0 / mse);
-}
+double psnr_rgb(const imageio::Image& a, const imageio::Image& b) { return cli::psnr(a, b, 8).all_db; }
 
 codec::EncodeParams at(double bytes, bool ht) {
   codec::EncodeParams p;

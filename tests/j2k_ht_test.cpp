@@ -18,6 +18,7 @@
 #include "codec/structure/error.h"
 #include "imageio/read.h"
 #include "imageio/write.h"
+#include "psnr.h"
 #include "support/external_decode.h"
 #include "support/option_matrix.h"
 #include "support/scratch_dir.h"
@@ -232,16 +233,6 @@ TEST(J2kHt, SignedSamples) {
   }
 }
 
-double psnr(const imageio::Image& a, const imageio::Image& b, int bits) {
-  double se = 0;
-  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-    const double d = a.pixels[i] - b.pixels[i];
-    se += d * d;
-  }
-  const double peak = std::ldexp(1.0, bits) - 1;
-  const double mse = se / static_cast<double>(a.pixels.size());
-  return mse == 0 ? INFINITY : 10 * std::log10(peak * peak / mse);
-}
 
 // Lossy HT: the same quantisation indices as an EBCOT encode that keeps every pass, so each decoder
 // must return the very samples it returns for the EBCOT stream, at the PSNR such a decode gives.
@@ -261,7 +252,7 @@ void check_lossy(const std::string& name, const imageio::Image& image, codec::En
     ASSERT_EQ(a.width, image.width) << tool;
     ASSERT_EQ(a.height, image.height) << tool;
     ASSERT_EQ(a.channels, image.channels) << tool;
-    const double db = psnr(image, a, image.bits_per_sample);
+    const double db = cli::psnr(image, a, image.bits_per_sample).all_db;
     EXPECT_GE(db, min_psnr) << tool;
     if (tool == "ojph_expand") continue;  // OpenJPH decodes only HT streams, not the EBCOT one
     const fs::path other = s / ("ebcot_" + output_for(tool, s).filename().string());
