@@ -8,6 +8,7 @@
 #include <limits>
 #include <new>
 
+#include "buffer_layout.h"
 #include "codec/encoder/encoder.h"
 #include "codec/structure/error.h"
 #include "imageio/atomic_write.h"
@@ -28,31 +29,12 @@ double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std
 // carries it back to the encode's caller, which turns it into Error.
 struct Cancelled {};
 
-std::size_t sample_bytes(SampleType type) {
-  switch (type) {
-    case SampleType::UInt8: return 1;
-    case SampleType::UInt16:
-    case SampleType::Int16: return 2;
-    case SampleType::Int32: return 4;
-  }
-  throw Error("unknown sample type");
-}
-
-// a * b, or an Error naming `what` when it does not fit in size_t.
-std::size_t checked_product(std::size_t a, std::size_t b, const char* what) {
-  if (a != 0 && b > std::numeric_limits<std::size_t>::max() / a) throw Error(std::string(what) + " overflows the address space");
-  return a * b;
-}
-
 // The image's samples as the codec takes them: one integer plane per component, every value
 // checked against the declared bits (a sample out of range is an error, not silently clipped).
 codec::SourceImage to_source(const ImageView& v) {
   if (v.data == nullptr) throw Error("image data is null");
-  if (v.width <= 0 || v.height <= 0)
-    throw Error("image size " + std::to_string(v.width) + "x" + std::to_string(v.height) + " is empty or negative");
-  if (v.components < 1 || v.components > 16384)
-    throw Error("component count " + std::to_string(v.components) + " is outside 1..16384");
-  const std::size_t bytes = sample_bytes(v.type);
+  const detail::BufferLayout layout = detail::check_buffer(
+      {v.width, v.height, v.components, v.type, v.layout, v.row_stride, v.plane_stride, v.size_bytes}, "image buffer");
   const int max_bits = v.type == SampleType::UInt8 ? 8 : 16;
   const int bits = v.bits == 0 ? max_bits : v.bits;
   if (bits < 1 || bits > max_bits)
@@ -61,21 +43,6 @@ codec::SourceImage to_source(const ImageView& v) {
   const bool is_signed = v.type == SampleType::Int16 || (v.type == SampleType::Int32 && v.is_signed);
   const auto w = static_cast<std::size_t>(v.width), h = static_cast<std::size_t>(v.height),
              nc = static_cast<std::size_t>(v.components);
-  const bool planar = v.layout == Layout::Planar;
-  const std::size_t pixel_step = planar ? bytes : checked_product(bytes, nc, "a pixel's size");
-  const std::size_t tight_row = checked_product(pixel_step, w, "a row's size");
-  const std::size_t row_stride = v.row_stride == 0 ? tight_row : v.row_stride;
-  if (row_stride < tight_row)
-    throw Error("row stride " + std::to_string(row_stride) + " is smaller than a row (" + std::to_string(tight_row) + " bytes)");
-  const std::size_t plane_bytes = checked_product(row_stride, h - 1, "the image's size") + tight_row;
-  const std::size_t plane_stride = !planar ? 0 : v.plane_stride == 0 ? checked_product(row_stride, h, "a plane's size") : v.plane_stride;
-  if (planar && plane_stride < plane_bytes)
-    throw Error("plane stride " + std::to_string(plane_stride) + " is smaller than a plane (" + std::to_string(plane_bytes) + " bytes)");
-  const std::size_t needed = planar ? checked_product(plane_stride, nc - 1, "the image's size") + plane_bytes : plane_bytes;
-  if (v.size_bytes < needed)
-    throw Error("image buffer of " + std::to_string(v.size_bytes) + " bytes is smaller than the " + std::to_string(needed) +
-                " bytes a " + std::to_string(v.width) + "x" + std::to_string(v.height) + " image of " +
-                std::to_string(v.components) + " components needs");
   const std::int64_t lo = is_signed ? -(std::int64_t{1} << (bits - 1)) : 0;
   const std::int64_t hi = is_signed ? (std::int64_t{1} << (bits - 1)) - 1 : (std::int64_t{1} << bits) - 1;
 
@@ -89,10 +56,10 @@ codec::SourceImage to_source(const ImageView& v) {
     comp.is_signed = is_signed;
     imageio::resize_with_huge_pages(comp.samples, w * h);
     for (std::size_t y = 0; y < h; ++y) {
-      const std::uint8_t* row = base + (planar ? c * plane_stride : c * bytes) + y * row_stride;
+      const std::uint8_t* row = base + c * layout.component_step + y * layout.row_stride;
       std::int32_t* dst = comp.samples.data() + y * w;
       for (std::size_t x = 0; x < w; ++x) {
-        const std::uint8_t* s = row + x * pixel_step;
+        const std::uint8_t* s = row + x * layout.pixel_step;
         std::int64_t value = 0;
         switch (v.type) {
           case SampleType::UInt8: value = *s; break;

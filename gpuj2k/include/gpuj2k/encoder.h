@@ -1,6 +1,7 @@
 #pragma once
-// gpuj2k: JPEG 2000 Part 1 encoding, the library's public interface. Everything a program needs is
-// in this header; nothing else under the project's folders is public.
+// gpuj2k: JPEG 2000 Part 1 (and Part 15, HTJ2K) encoding, the library's public interface with
+// gpuj2k/decoder.h and the gpuj2k/common.h both include; nothing else under the project's folders
+// is public.
 //
 //   #include <gpuj2k/encoder.h>
 //
@@ -12,44 +13,18 @@
 //   options.rates_bpp = {0.75};
 //   std::vector<std::uint8_t> j2k = gpuj2k::encode(image, options);
 //
-// Every failure throws gpuj2k::Error, whose message is one line that names the parameter or file
-// and the problem. Encodes are independent: several may run at once on different threads (each
-// with its own worker threads and, where the GPU is used, its own GL context).
-#include <cstddef>
+// Every failure throws gpuj2k::Error (gpuj2k/common.h), whose message is one line that names the
+// parameter or file and the problem. Encodes are independent: several may run at once on different
+// threads (each with its own worker threads and, where the GPU is used, its own GL context).
 #include <cstdint>
 #include <functional>
-#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
-#if defined(_WIN32)
-#define GPUJ2K_API
-#else
-#define GPUJ2K_API __attribute__((visibility("default")))
-#endif
+#include "gpuj2k/common.h"
 
 namespace gpuj2k {
-
-// The library's one error type: invalid arguments, unreadable or unwritable files, images the
-// standard cannot code, cancellation.
-class GPUJ2K_API Error : public std::runtime_error {
- public:
-  explicit Error(const std::string& what) : std::runtime_error(what) {}
-};
-
-// How the caller's samples are stored.
-enum class SampleType {
-  UInt8,   // unsigned, 1..8 significant bits
-  UInt16,  // unsigned, 1..16 significant bits (native byte order)
-  Int16,   // signed, 1..16 significant bits (native byte order)
-  Int32,   // signed or unsigned (ImageView::is_signed), 1..16 significant bits
-};
-
-enum class Layout {
-  Interleaved,  // the components of a pixel side by side, pixels in rows
-  Planar,       // each component a plane of rows, planes one after another
-};
 
 // An image in the caller's memory. Nothing is copied until the encode reads it, and nothing beyond
 // `size_bytes` is ever read: a buffer too small for the layout is an Error.
@@ -59,7 +34,7 @@ struct ImageView {
   int width = 0, height = 0;
   int components = 1;          // 1..16384
   SampleType type = SampleType::UInt8;
-  int bits = 0;                // significant bits per sample; 0: 8 for UInt8, 16 otherwise
+  int bits = 0;                // significant bits per sample, at most 16; 0: 8 for UInt8, 16 otherwise
   bool is_signed = false;      // Int32 only (UInt8/UInt16 are unsigned, Int16 is signed)
   Layout layout = Layout::Interleaved;
   std::size_t row_stride = 0;    // bytes from one row to the next (of one plane when planar); 0: tight
@@ -68,11 +43,6 @@ struct ImageView {
 
 enum class Format { Codestream, Jp2 };  // a raw .j2k/.j2c codestream, or a .jp2 file
 enum class Progression { LRCP, RLCP, RPCL, PCRL, CPRL };
-enum class DwtDevice {
-  Auto,  // a hardware GPU where it is faster for the image size, never a software renderer
-  Cpu,
-  Gpu,   // fails if no GL context can be made
-};
 
 // Code-block mode switches (T.800 Table A.19).
 struct CodeBlockModes {
@@ -143,8 +113,5 @@ GPUJ2K_API std::vector<std::uint8_t> encode_file(const std::string& input_path, 
 // The same, written to `output_path` atomically (no file at all on failure).
 GPUJ2K_API void encode_file(const std::string& input_path, const std::string& output_path,
                             const EncodeOptions& options, EncodeReport* report = nullptr);
-
-// The library's version, "MAJOR.MINOR.PATCH".
-GPUJ2K_API std::string version();
 
 }  // namespace gpuj2k

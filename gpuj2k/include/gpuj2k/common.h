@@ -1,0 +1,46 @@
+#pragma once
+// gpuj2k: what the encoder (gpuj2k/encoder.h) and the decoder (gpuj2k/decoder.h) share: the one
+// error type, how samples are laid out in the caller's memory, where the DWT runs, the version.
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+
+#if defined(_WIN32)
+#define GPUJ2K_API
+#else
+#define GPUJ2K_API __attribute__((visibility("default")))
+#endif
+
+namespace gpuj2k {
+
+// The library's one error type: invalid arguments, unreadable, unwritable or malformed files,
+// images the standard cannot code, cancellation. The message is one line that names the parameter
+// or file and the problem.
+class GPUJ2K_API Error : public std::runtime_error {
+ public:
+  explicit Error(const std::string& what) : std::runtime_error(what) {}
+};
+
+// How samples are stored in the caller's memory.
+enum class SampleType {
+  UInt8,   // unsigned, 1..8 significant bits
+  UInt16,  // unsigned, 1..16 significant bits (native byte order)
+  Int16,   // signed, 1..16 significant bits (native byte order)
+  Int32,   // signed or unsigned, up to 31 bits (native byte order)
+};
+
+enum class Layout {
+  Interleaved,  // the components of a pixel side by side, pixels in rows
+  Planar,       // each component a plane of rows, planes one after another
+};
+
+enum class DwtDevice {
+  Auto,  // a hardware GPU where it is faster for the image size, never a software renderer
+  Cpu,
+  Gpu,   // fails if no GL context can be made
+};
+
+// The library's version, "MAJOR.MINOR.PATCH".
+GPUJ2K_API std::string version();
+
+}  // namespace gpuj2k
