@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -206,6 +207,68 @@ TEST(Api, ConcurrentEncodesGiveTheSameBytes) {
     threads.emplace_back([&, i] { got[i] = i % 2 ? gpuj2k::encode(view_of(b), lossless) : gpuj2k::encode(view_of(a), lossy); });
   for (std::thread& t : threads) t.join();
   for (std::size_t i = 0; i < got.size(); ++i) EXPECT_EQ(got[i], i % 2 ? expected_b : expected_a) << i;
+}
+
+// Encodes sharing one engine (its worker threads) on several threads at once give the bytes of
+// encodes with threads of their own.
+TEST(Api, EncodesSharingAnEngineGiveTheSameBytes) {
+  const Buffer a = make_buffer(120, 90, 3, 8), b = make_buffer(97, 64, 1, 16);
+  auto engine = std::make_shared<gpuj2k::Engine>(2);
+  EXPECT_EQ(engine->threads(), 2);
+  gpuj2k::EncodeOptions lossy;
+  lossy.rates_bpp = {0.5, 2.0};
+  lossy.dwt = gpuj2k::DwtDevice::Cpu;
+  gpuj2k::EncodeOptions lossless;
+  lossless.lossless = true;
+  const std::vector<std::uint8_t> expected_a = gpuj2k::encode(view_of(a), lossy);
+  const std::vector<std::uint8_t> expected_b = gpuj2k::encode(view_of(b), lossless);
+  lossy.engine = engine;
+  lossless.engine = engine;
+  std::vector<std::vector<std::uint8_t>> got(6);
+  std::vector<gpuj2k::EncodeReport> reports(got.size());
+  std::vector<std::thread> threads;
+  for (std::size_t i = 0; i < got.size(); ++i)
+    threads.emplace_back([&, i] {
+      got[i] = i % 2 ? gpuj2k::encode(view_of(b), lossless, &reports[i]) : gpuj2k::encode(view_of(a), lossy, &reports[i]);
+    });
+  for (std::thread& t : threads) t.join();
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    EXPECT_EQ(got[i], i % 2 ? expected_b : expected_a) << i;
+    EXPECT_EQ(reports[i].threads, 2) << i;
+  }
+}
+
+// With the DWT on the GPU, encodes sharing an engine make one GL context between them (the first
+// pays for it, the others find it ready) and, using it in turn from their own threads, give the
+// bytes of an encode with a context of its own.
+TEST(Api, EncodesSharingAnEngineShareOneGlContext) {
+  const Buffer a = make_buffer(200, 150, 3, 8);
+  gpuj2k::EncodeOptions options;
+  options.rates_bpp = {1.0};
+  options.dwt = gpuj2k::DwtDevice::Gpu;
+  options.threads = 2;
+  std::vector<std::uint8_t> expected;
+  gpuj2k::EncodeReport alone;
+  try {
+    expected = gpuj2k::encode(view_of(a), options, &alone);
+  } catch (const gpuj2k::Error& e) {
+    GTEST_SKIP() << "no GL context on this machine: " << e.what();
+  }
+  options.engine = std::make_shared<gpuj2k::Engine>(2);
+  std::vector<std::vector<std::uint8_t>> got(4);
+  std::vector<gpuj2k::EncodeReport> reports(got.size());
+  std::vector<std::thread> threads;
+  for (std::size_t i = 0; i < got.size(); ++i)
+    threads.emplace_back([&, i] { got[i] = gpuj2k::encode(view_of(a), options, &reports[i]); });
+  for (std::thread& t : threads) t.join();
+  int made_contexts = 0;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    EXPECT_EQ(got[i], expected) << i;
+    EXPECT_EQ(reports[i].dwt_backend, alone.dwt_backend) << i;
+    made_contexts += reports[i].gl_context_ms > 0 ? 1 : 0;
+  }
+  EXPECT_EQ(made_contexts, 1);
+  EXPECT_GT(alone.gl_context_ms, 0);
 }
 
 TEST(Api, VersionIsTheProjects) { EXPECT_EQ(gpuj2k::version(), GPUJ2K_EXPECTED_VERSION); }

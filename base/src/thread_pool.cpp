@@ -4,6 +4,12 @@
 
 namespace base {
 
+namespace {
+// The pool whose parallel_for body this thread is running, if any: a nested call runs inline
+// instead of waiting for the turn its own caller holds.
+thread_local const ThreadPool* running_body_of = nullptr;
+}  // namespace
+
 ThreadPool::ThreadPool(int threads) {
   if (threads <= 0) threads = static_cast<int>(std::thread::hardware_concurrency());
   if (threads <= 0) threads = 1;
@@ -20,6 +26,12 @@ ThreadPool::~ThreadPool() {
 }
 
 void ThreadPool::run_items() {
+  const ThreadPool* outer = running_body_of;
+  running_body_of = this;
+  struct Restore {
+    const ThreadPool* outer;
+    ~Restore() { running_body_of = outer; }
+  } restore{outer};
   for (;;) {
     const std::size_t i = next_.fetch_add(1);
     if (i >= count_) return;
@@ -52,10 +64,11 @@ void ThreadPool::worker_loop() {
 
 void ThreadPool::parallel_for(std::size_t count, const std::function<void(std::size_t)>& body) {
   if (count == 0) return;
-  if (workers_.empty() || count == 1) {
+  if (workers_.empty() || count == 1 || running_body_of == this) {
     for (std::size_t i = 0; i < count; ++i) body(i);
     return;
   }
+  std::lock_guard turn(turn_);
   {
     std::lock_guard lock(mutex_);
     body_ = &body;

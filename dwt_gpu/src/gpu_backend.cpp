@@ -46,6 +46,10 @@ GpuBackend::~GpuBackend() {
   if (state_ && state_->context) state_->context->make_current();
 }
 
+void GpuBackend::release_context() noexcept {
+  if (state_ && state_->context) state_->context->release_current();
+}
+
 void GpuBackend::ensure_ready() {
   if (state_) {
     state_->context->make_current();

@@ -10,6 +10,7 @@
 
 #include "buffer_layout.h"
 #include "codec/encoder/encoder.h"
+#include "codec/encoder/engine.h"
 #include "codec/structure/error.h"
 #include "imageio/atomic_write.h"
 #include "imageio/error.h"
@@ -20,6 +21,13 @@
 #endif
 
 namespace gpuj2k {
+
+// What an engine holds: the encoder's shared pool and GPU contexts.
+struct Engine::State {
+  explicit State(int threads) : encode(threads) {}
+  codec::EncodeEngine encode;
+};
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -125,6 +133,7 @@ codec::EncodeParams base_params(const EncodeOptions& o) {
   p.guard_bits = o.guard_bits;
   p.comment = o.comment;
   p.threads = o.threads;
+  p.engine = o.engine ? &o.engine->state().encode : nullptr;
   p.skip_passes = !o.code_every_pass;
   p.ht = o.ht;
   p.dwt = o.dwt == DwtDevice::Cpu ? codec::DwtDevice::Cpu : o.dwt == DwtDevice::Gpu ? codec::DwtDevice::Gpu : codec::DwtDevice::Auto;
@@ -231,6 +240,10 @@ void encode_file(const std::string& input_path, const std::string& output_path, 
   const std::vector<std::uint8_t> bytes = encode_file(input_path, options, report);
   guarded([&] { imageio::write_bytes_atomically(output_path, bytes); });
 }
+
+Engine::Engine(int threads) : state_(std::make_unique<State>(threads)) {}
+Engine::~Engine() = default;
+int Engine::threads() const { return state_->encode.pool().size(); }
 
 std::string version() { return GPUJ2K_VERSION; }
 

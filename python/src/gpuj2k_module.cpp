@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,7 +31,7 @@ std::vector<double> numbers(const py::object& value, const char* name) {
 // The options common to both entry points, from Python's keyword arguments.
 gpuj2k::EncodeOptions make_options(bool lossless, const py::object& rate, const py::object& psnr,
                                    std::optional<double> size, int levels, const std::string& format, int threads,
-                                   const std::string& dwt) {
+                                   const std::string& dwt, const std::shared_ptr<gpuj2k::Engine>& engine) {
   gpuj2k::EncodeOptions o;
   o.lossless = lossless;
   o.rates_bpp = numbers(rate, "rate");
@@ -40,6 +41,7 @@ gpuj2k::EncodeOptions make_options(bool lossless, const py::object& rate, const 
   if (format == "jp2") o.format = gpuj2k::Format::Jp2;
   else if (format != "j2k") throw gpuj2k::Error("format must be \"j2k\" or \"jp2\", got \"" + format + "\"");
   o.threads = threads;
+  o.engine = engine;
   if (dwt == "cpu") o.dwt = gpuj2k::DwtDevice::Cpu;
   else if (dwt == "gpu") o.dwt = gpuj2k::DwtDevice::Gpu;
   else if (dwt != "auto") throw gpuj2k::Error("dwt must be \"auto\", \"cpu\" or \"gpu\", got \"" + dwt + "\"");
@@ -52,8 +54,9 @@ py::bytes to_bytes(const std::vector<std::uint8_t>& data) {
 
 py::bytes encode(const py::array& array, bool lossless, const py::object& rate, const py::object& psnr,
                  std::optional<double> size, int levels, int bits,
-                 const std::string& format, int threads, const std::string& dwt) {
-  const gpuj2k::EncodeOptions options = make_options(lossless, rate, psnr, size, levels, format, threads, dwt);
+                 const std::string& format, int threads, const std::string& dwt,
+                 const std::shared_ptr<gpuj2k::Engine>& engine) {
+  const gpuj2k::EncodeOptions options = make_options(lossless, rate, psnr, size, levels, format, threads, dwt, engine);
   if (array.ndim() != 2 && array.ndim() != 3)
     throw gpuj2k::Error("the array must have shape (height, width) or (height, width, components), got " +
                         std::to_string(array.ndim()) + " dimensions");
@@ -90,8 +93,9 @@ py::bytes encode(const py::array& array, bool lossless, const py::object& rate, 
 
 py::bytes encode_file(const std::string& path, bool lossless, const py::object& rate, const py::object& psnr,
                       std::optional<double> size, int levels,
-                      const std::string& format, int threads, const std::string& dwt) {
-  const gpuj2k::EncodeOptions options = make_options(lossless, rate, psnr, size, levels, format, threads, dwt);
+                      const std::string& format, int threads, const std::string& dwt,
+                 const std::shared_ptr<gpuj2k::Engine>& engine) {
+  const gpuj2k::EncodeOptions options = make_options(lossless, rate, psnr, size, levels, format, threads, dwt, engine);
   std::vector<std::uint8_t> out;
   {
     py::gil_scoped_release release;
@@ -112,15 +116,21 @@ PYBIND11_MODULE(gpuj2k, m) {
       PyErr_SetString(error.ptr(), e.what());
     }
   });
+  py::class_<gpuj2k::Engine, std::shared_ptr<gpuj2k::Engine>>(
+      m, "Engine",
+      "Worker threads (and a GL context when the DWT runs on the GPU) that encodes given engine=... share, "
+      "from any Python thread.")
+      .def(py::init<int>(), py::arg("threads") = 0)
+      .def_property_readonly("threads", &gpuj2k::Engine::threads);
   m.def("encode", &encode, py::arg("array"), py::kw_only(), py::arg("lossless") = false, py::arg("rate") = py::none(),
         py::arg("psnr") = py::none(), py::arg("size") = py::none(), py::arg("levels") = 5, py::arg("bits") = 0,
-        py::arg("format") = "j2k", py::arg("threads") = 0, py::arg("dwt") = "auto",
+        py::arg("format") = "j2k", py::arg("threads") = 0, py::arg("dwt") = "auto", py::arg("engine") = py::none(),
         "Encodes a (H, W) or (H, W, C) array of uint8, uint16 or int16 and returns the codestream (or JP2 file) as "
         "bytes. rate: bits per pixel per layer; psnr: dB per layer; size: bytes; bits: significant bits (0: the "
         "dtype's).");
   m.def("encode_file", &encode_file, py::arg("path"), py::kw_only(), py::arg("lossless") = false,
         py::arg("rate") = py::none(), py::arg("psnr") = py::none(), py::arg("size") = py::none(), py::arg("levels") = 5,
-        py::arg("format") = "j2k", py::arg("threads") = 0, py::arg("dwt") = "auto",
+        py::arg("format") = "j2k", py::arg("threads") = 0, py::arg("dwt") = "auto", py::arg("engine") = py::none(),
         "Encodes an image file (PNM, PNG, TIFF, ...) and returns the bytes.");
   m.attr("__version__") = gpuj2k::version();
 }

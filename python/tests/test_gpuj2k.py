@@ -182,6 +182,23 @@ class Threads(unittest.TestCase):
         self.assertGreater(len(during), 3)
         self.assertEqual(results[0], results[1])
 
+    def test_threads_sharing_an_engine_give_the_same_bytes(self):
+        image = pattern(256, 320, 3, np.uint8, 8)
+        expected = gpuj2k.encode(image, rate=1.0, dwt="cpu", threads=2)
+        engine = gpuj2k.Engine(threads=2)
+        self.assertEqual(engine.threads, 2)
+        results = [None] * 4
+
+        def work(i):
+            results[i] = gpuj2k.encode(image, rate=1.0, dwt="cpu", engine=engine)
+
+        workers = [threading.Thread(target=work, args=(i,)) for i in range(len(results))]
+        for w in workers:
+            w.start()
+        for w in workers:
+            w.join()
+        self.assertEqual(results, [expected] * len(results))
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -11,7 +11,9 @@
 namespace base {
 
 // A fixed set of worker threads that run one parallel_for at a time. The calling thread works too,
-// so a pool of size 1 runs everything inline.
+// so a pool of size 1 runs everything inline. Several threads may share a pool (encodes sharing a
+// gpuj2k::Engine): their parallel_for calls take turns, each using every worker. A parallel_for
+// called from inside a body of the same pool runs inline on the calling worker.
 class ThreadPool {
  public:
   explicit ThreadPool(int threads = 0);  // 0: one per hardware thread
@@ -29,6 +31,7 @@ class ThreadPool {
   void run_items();
 
   std::vector<std::thread> workers_;
+  std::mutex turn_;   // held by the parallel_for that owns the workers
   std::mutex mutex_;
   std::condition_variable wake_;
   std::condition_variable done_;

@@ -9,7 +9,9 @@
 
 #include "codec/structure/error.h"
 #include "dwt_cpu/cpu_backend.h"
+#include "codec/encoder/engine.h"
 #include "dwt_gpu/gpu_backend.h"
+#include "dwt_gpu/shared_gpu.h"
 #include "glcontext/context.h"
 
 namespace codec {
@@ -127,10 +129,77 @@ void store_dwt_costs(const std::filesystem::path& cache, const std::string& key,
   if (ec) std::filesystem::remove(temporary, ec);
 }
 
+namespace {
+
+// A GL context with the DWT shader compiled, made for one encode or for an engine, or why none.
+struct MadeGpu {
+  std::unique_ptr<dwt_gpu::GpuBackend> gpu;
+  std::string failure;
+  double context_ms = 0, compile_ms = 0, calibration_ms = 0;
+  std::optional<DwtCosts> costs;  // hardware: the calibration against the CPU lifting
+  bool costs_measured_now = false;
+};
+
+// --dwt gpu: any renderer, software ones included.
+MadeGpu make_any_gpu() {
+  MadeGpu made;
+  try {
+    made.gpu = std::make_unique<dwt_gpu::GpuBackend>(glc::Platform::Auto, true);
+    made.context_ms = made.gpu->last_timings().context_ms;
+    made.compile_ms = made.gpu->last_timings().compile_ms;
+  } catch (const std::exception& e) {
+    made.failure = e.what();
+  }
+  return made;
+}
+
+// --dwt auto: a hardware GPU only, with its costs from the cache or measured now against `cpu`.
+MadeGpu make_hardware_gpu(dwt::DwtBackend& cpu) {
+  MadeGpu made;
+  const auto t0 = Clock::now();
+  std::unique_ptr<glc::Context> context;
+  try {
+    context = glc::Context::create_hardware();
+  } catch (const std::exception& e) {
+    made.failure = e.what();
+    return made;
+  }
+  made.context_ms = ms_since(t0);
+  const std::string renderer = context->description();
+  const auto compile_start = Clock::now();
+  made.gpu = std::make_unique<dwt_gpu::GpuBackend>(std::move(context));
+  made.compile_ms = ms_since(compile_start);
+  const std::string key = renderer + " | " + cpu.name();
+  const auto cache = dwt_cost_cache_path();
+  made.costs = cache ? load_dwt_costs(*cache, key) : std::nullopt;
+  made.costs_measured_now = !made.costs;
+  if (!made.costs) {
+    const auto calibration_start = Clock::now();
+    made.costs = calibrate_dwt(cpu, *made.gpu, made.compile_ms);
+    made.calibration_ms = ms_since(calibration_start);
+    if (cache) store_dwt_costs(*cache, key, *made.costs);
+  }
+  return made;
+}
+
+std::string gpu_name(const std::string& renderer) { return "gpu fragment shaders (" + renderer + ")"; }
+
+}  // namespace
+
+EncodeEngine::~EncodeEngine() = default;
+
+const EncodeEngine::Gpu& EncodeEngine::gpu(bool hardware, const std::function<Gpu()>& make, bool& made_now) {
+  std::lock_guard lock(mutex_);
+  std::optional<Gpu>& slot = hardware ? hardware_ : any_;
+  made_now = !slot;
+  if (!slot) slot = make();
+  return *slot;
+}
+
 DwtChoice choose_dwt(const EncodeParams& params, double samples, base::ThreadPool& pool) {
   DwtChoice choice;
+  auto cpu = std::make_unique<dwt_cpu::CpuBackend>(pool);
   auto use_cpu = [&](std::string reason) {
-    auto cpu = std::make_unique<dwt_cpu::CpuBackend>(pool);
     choice.name = cpu->name();
     choice.backend = std::move(cpu);
     choice.reason = std::move(reason);
@@ -138,59 +207,68 @@ DwtChoice choose_dwt(const EncodeParams& params, double samples, base::ThreadPoo
   };
   if (params.lossless) return use_cpu("lossless: the reversible 5/3 runs on the CPU");
   if (params.dwt == DwtDevice::Cpu) return use_cpu("asked for the CPU");
+  const bool hardware = params.dwt == DwtDevice::Auto;
 
-  if (params.dwt == DwtDevice::Gpu) {
-    try {
-      auto gpu = std::make_unique<dwt_gpu::GpuBackend>(glc::Platform::Auto, true);
-      choice.name = "gpu fragment shaders (" + gpu->renderer() + ")";
-      choice.gl_context_ms = gpu->last_timings().context_ms;
-      choice.shader_compile_ms = gpu->last_timings().compile_ms;
-      choice.backend = std::move(gpu);
-      choice.reason = "asked for the GPU";
-      return choice;
-    } catch (const std::exception& e) {
-      throw EncodeError(std::string("the GPU DWT was asked for and no GL context could be made: ") + e.what());
+  // The GPU: this encode's own, or the engine's (made by whichever encode asked first, which
+  // reports its costs; the others find it ready).
+  std::unique_ptr<dwt::DwtBackend> gpu;
+  std::string renderer, failure;
+  std::optional<DwtCosts> costs;
+  bool measured_now = false;
+  auto take_times = [&](const MadeGpu& made) {
+    choice.gl_context_ms = made.context_ms;
+    choice.shader_compile_ms = made.compile_ms;
+    choice.calibration_ms = made.calibration_ms;
+    measured_now = made.costs_measured_now;
+  };
+  if (params.engine) {
+    bool made_now = false;
+    const EncodeEngine::Gpu& shared = params.engine->gpu(hardware, [&] {
+      MadeGpu made = hardware ? make_hardware_gpu(*cpu) : make_any_gpu();
+      take_times(made);
+      EncodeEngine::Gpu kept;
+      kept.failure = made.failure;
+      kept.costs = made.costs;
+      if (made.gpu) kept.gpu = std::make_shared<dwt_gpu::SharedGpu>(std::move(made.gpu));
+      return kept;
+    }, made_now);
+    failure = shared.failure;
+    costs = shared.costs;
+    if (shared.gpu) {
+      renderer = shared.gpu->renderer();
+      gpu = std::make_unique<dwt_gpu::SharedGpuUser>(shared.gpu);
+    }
+  } else {
+    MadeGpu made = hardware ? make_hardware_gpu(*cpu) : make_any_gpu();
+    take_times(made);
+    failure = made.failure;
+    costs = made.costs;
+    if (made.gpu) {
+      renderer = made.gpu->renderer();
+      gpu = std::move(made.gpu);
     }
   }
 
+  if (!hardware) {
+    if (!gpu) throw EncodeError("the GPU DWT was asked for and no GL context could be made: " + failure);
+    choice.name = gpu_name(renderer);
+    choice.backend = std::move(gpu);
+    choice.reason = "asked for the GPU";
+    return choice;
+  }
   // Auto: a hardware GPU, and only where it is faster.
-  const auto t0 = Clock::now();
-  std::unique_ptr<glc::Context> context;
-  try {
-    context = glc::Context::create_hardware();
-  } catch (const std::exception& e) {
-    return use_cpu(std::string(e.what()) + "; the 9/7 runs on the CPU");
-  }
-  choice.gl_context_ms = ms_since(t0);
-  const std::string renderer = context->description();
-  const auto compile_start = Clock::now();
-  auto gpu = std::make_unique<dwt_gpu::GpuBackend>(std::move(context));
-  choice.shader_compile_ms = ms_since(compile_start);
-  auto cpu = std::make_unique<dwt_cpu::CpuBackend>(pool);
-  const std::string key = renderer + " | " + cpu->name();
-  const auto cache = dwt_cost_cache_path();
-  std::optional<DwtCosts> costs = cache ? load_dwt_costs(*cache, key) : std::nullopt;
-  const bool measured_now = !costs;
-  if (!costs) {
-    const auto calibration_start = Clock::now();
-    costs = calibrate_dwt(*cpu, *gpu, choice.shader_compile_ms);
-    choice.calibration_ms = ms_since(calibration_start);
-    if (cache) store_dwt_costs(*cache, key, *costs);
-  }
+  if (!gpu) return use_cpu(failure + "; the 9/7 runs on the CPU");
   const double gpu_ms = costs->gpu_setup_ms + costs->gpu_ns_per_sample * samples * 1e-6;
   const double cpu_ms = costs->cpu_ns_per_sample * samples * 1e-6;
   const std::string prediction = "predicted " + fixed(gpu_ms, 1) + " ms on " + renderer + " against " + fixed(cpu_ms, 1) +
                                  " ms on the CPU (costs " + (measured_now ? "measured now" : "from the cache") + ")";
   if (gpu_pays_off(*costs, samples)) {
-    choice.name = "gpu fragment shaders (" + renderer + ")";
+    choice.name = gpu_name(renderer);
     choice.backend = std::move(gpu);
     choice.reason = "the GPU is faster here: " + prediction;
     return choice;
   }
-  choice.name = cpu->name();
-  choice.backend = std::move(cpu);
-  choice.reason = "the CPU is faster here: " + prediction;
-  return choice;
+  return use_cpu("the CPU is faster here: " + prediction);
 }
 
 }  // namespace codec

@@ -1,4 +1,5 @@
 #include "codec/encoder/encoder.h"
+#include "codec/encoder/engine.h"
 
 #include <algorithm>
 
@@ -15,6 +16,7 @@
 #include "codec/encoder/dwt_choice.h"
 
 #include <chrono>
+#include <optional>
 #include <cmath>
 #include <memory>
 
@@ -197,7 +199,8 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
   // Stage 0: the plan, one set of worker threads for every stage, and where the DWT runs.
   const auto setup_start = Clock::now();
   const CodingPlan plan = make_plan(image, params);
-  base::ThreadPool pool(params.threads);
+  std::optional<base::ThreadPool> own_pool;
+  base::ThreadPool& pool = params.engine ? params.engine->pool() : own_pool.emplace(params.threads);
   report.threads = pool.size();
   double samples = 0;
   for (std::size_t c = 0; c < image.components.size(); ++c) samples += static_cast<double>(image.width) * image.height;

@@ -19,7 +19,6 @@
 #include "codec/rate/selection.h"
 #include "codec/structure/error.h"
 #include "dwt/norms.h"
-#include "dwt_gpu/gpu_backend.h"
 #include "imageio/plane_memory.h"
 
 namespace codec {
@@ -264,7 +263,6 @@ dwt::DwtParams dwt_params(const TileComponent& tc, bool lossless) {
 // Stage 2: the forward DWT of every tile-component, into the Mallat layout, in place.
 void transform_planes(const Tile& tile, TilePlanes& planes, bool lossless, dwt::DwtBackend& dwt,
                       dwt::DwtBackend& reversible_dwt, StageTimes& times) {
-  auto* gpu = dynamic_cast<dwt_gpu::GpuBackend*>(&dwt);
   for (std::size_t c = 0; c < tile.components.size(); ++c) {
     const TileComponent& tc = tile.components[c];
     if (tc.rect.empty()) continue;
@@ -276,9 +274,9 @@ void transform_planes(const Tile& tile, TilePlanes& planes, bool lossless, dwt::
       continue;
     }
     dwt.forward(dwt::make_span(planes.floats[c].data(), w, h), dwt_params(tc, false));
-    if (gpu) {
-      // The GPU splits its own time; anything around it (validation, tables) counts as upload.
-      const dwt_gpu::GpuTimings& g = gpu->last_timings();
+    if (const dwt::DeviceTimings* device = dwt.device_timings()) {
+      // A device splits its own time; anything around it (validation, tables) counts as upload.
+      const dwt::DeviceTimings& g = *device;
       const double whole = ms_since(clock);
       times.dwt += g.compute_ms;
       times.download += g.download_ms;

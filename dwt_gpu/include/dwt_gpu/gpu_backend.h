@@ -9,16 +9,8 @@
 
 namespace dwt_gpu {
 
-// Wall-clock milliseconds of the last transform's stages, measured with a glFinish before each clock
-// read so GPU work is charged to the stage that issued it (the thesis' Table 4.1 columns).
-struct GpuTimings {
-  double context_ms = 0;  // creating the GL context (only the first transform of a backend pays it)
-  double compile_ms = 0;  // compiling and linking the shader (likewise once)
-  double upload_ms = 0;   // texture and framebuffer creation, address table, plane upload
-  double compute_ms = 0;  // the render passes
-  double download_ms = 0; // reading the plane back
-  double total_ms() const { return context_ms + compile_ms + upload_ms + compute_ms + download_ms; }
-};
+// The GPU's stage split (dwt/backend.h): its context and shader are paid once per backend.
+using GpuTimings = dwt::DeviceTimings;
 
 // The thesis' method (chapter 4.4-4.6): float32 textures, two framebuffers swapping roles after each
 // pass, one quad per pass over the current low-pass region, and one fragment shader that looks up
@@ -55,6 +47,10 @@ class GpuBackend final : public dwt::DwtBackend {
   // The GL renderer line (renderer | version | platform); creates the context if needed.
   std::string renderer();
   const GpuTimings& last_timings() const { return timings_; }
+  const dwt::DeviceTimings* device_timings() const override { return &timings_; }
+  // Unbinds the context from the calling thread, so that another thread may use this backend next
+  // (a context is current on one thread at a time; each use makes it current where it runs).
+  void release_context() noexcept;
 
  private:
   struct State;

@@ -18,6 +18,7 @@
 // threads (each with its own worker threads and, where the GPU is used, its own GL context).
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -77,6 +78,9 @@ struct EncodeOptions {
   int guard_bits = -1;             // -1: 2 lossless, 1 lossy
   std::string comment = "Created by gpuj2k";
   int threads = 0;                 // worker threads for this encode; 0: one per hardware thread
+  // Shared worker threads and GL context (common.h); `threads` is then the engine's. Null: this
+  // encode makes its own.
+  std::shared_ptr<Engine> engine;
   DwtDevice dwt = DwtDevice::Auto;
   bool code_every_pass = false;    // with a target: no pass skipping (the same file, slower)
   // HTJ2K (Part 15): every code-block through the high-throughput block coder (one cleanup pass,

@@ -21,6 +21,8 @@ struct LayerTarget {
   double value = 0;  // bytes of the whole file, or PSNR in dB
 };
 
+class EncodeEngine;
+
 struct EncodeParams {
   bool lossless = true;               // reversible 5/3 + RCT; otherwise irreversible 9/7 + ICT
   DwtDevice dwt = DwtDevice::Auto;
@@ -55,6 +57,9 @@ struct EncodeParams {
   // Called as code-blocks finish tier-1, from any worker thread (the callee must be thread-safe):
   // blocks done so far and the image's total.
   std::function<void(std::size_t done, std::size_t total)> progress;
+  // Worker threads and GPU contexts shared with other encodes (engine.h); `threads` is then the
+  // engine's. Null: this encode makes its own and drops them when it ends.
+  EncodeEngine* engine = nullptr;
 };
 
 // Throws EncodeError for values the standard or this encoder cannot take (code-block sizes that are
