@@ -5,22 +5,16 @@
 
 #include "dwt/kernel.h"
 #include "dwt_cpu/cpu_backend.h"
-#ifdef GPUJ2K_HAVE_GPU
 #include "dwt_gpu/gpu_backend.h"
-#endif
 
 namespace dwtool {
 
 namespace {
 
-std::unique_ptr<dwt::DwtBackend> make_gpu_backend([[maybe_unused]] const Request& request) {
-#ifdef GPUJ2K_HAVE_GPU
+std::unique_ptr<dwt::DwtBackend> make_gpu_backend(const Request& request) {
   // The environment is only consulted here, so a bad GPUJ2K_GL never breaks CPU runs.
   const glc::Platform platform = request.gl ? *request.gl : glc::platform_from_env();
   return std::make_unique<dwt_gpu::GpuBackend>(platform);
-#else
-  throw std::runtime_error("this build has no GPU backend");
-#endif
 }
 
 }  // namespace
@@ -39,24 +33,20 @@ std::unique_ptr<dwt::DwtBackend> make_backend(const Request& request) {
   return backend;
 }
 
-std::string prepare([[maybe_unused]] dwt::DwtBackend& backend) {
-#ifdef GPUJ2K_HAVE_GPU
+std::string prepare(dwt::DwtBackend& backend) {
   if (auto* gpu = dynamic_cast<dwt_gpu::GpuBackend*>(&backend)) return gpu->renderer();
-#endif
   return {};
 }
 
-std::string stage_times([[maybe_unused]] const dwt::DwtBackend& backend) {
-#ifdef GPUJ2K_HAVE_GPU
-  if (const auto* gpu = dynamic_cast<const dwt_gpu::GpuBackend*>(&backend)) {
-    const dwt_gpu::GpuTimings& t = gpu->last_timings();
+std::string stage_times(const dwt::DwtBackend& backend) {
+  if (const dwt::DeviceTimings* device = backend.device_timings()) {
+    const dwt::DeviceTimings& t = *device;
     // Context and shader compile are left out: prepare() paid for them before the clock started.
     char text[128];
     std::snprintf(text, sizeof text, " (upload %.2f, compute %.2f, download %.2f ms)", t.upload_ms, t.compute_ms,
                   t.download_ms);
     return text;
   }
-#endif
   return {};
 }
 

@@ -89,7 +89,7 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
       if (band.rect.empty()) continue;
       const dwt::LayoutRect layout =
           r == 0 ? dwt::LayoutRect{0, 0, static_cast<int>(band.rect.width()), static_cast<int>(band.rect.height())}
-                 : dwt::band_rect(geometry, band.level - reduce, static_cast<dwt::Orientation>(band.orientation));
+                 : dwt::band_rect(geometry, band.level - reduce, band.orientation);
       const StepSize step = step_of(params.quantization, tc.levels, band);
       // E-2: Mb = G + epsilon_b - 1 magnitude bit-planes, plus the ROI shift (H.1).
       const int mb = params.quantization.guard_bits + step.exponent - 1 + params.roi_shift;

@@ -35,6 +35,12 @@ int band_gain(BandOrientation o) {
   }
 }
 
+// Tier-1 names the orientations itself (it depends on no wavelet code); the values are T.800's.
+static_assert(static_cast<int>(t1::Orientation::LL) == static_cast<int>(BandOrientation::LL) &&
+                  static_cast<int>(t1::Orientation::HL) == static_cast<int>(BandOrientation::HL) &&
+                  static_cast<int>(t1::Orientation::LH) == static_cast<int>(BandOrientation::LH) &&
+                  static_cast<int>(t1::Orientation::HH) == static_cast<int>(BandOrientation::HH),
+              "tier-1's orientations are the subbands'");
 t1::Orientation to_t1(BandOrientation o) { return static_cast<t1::Orientation>(static_cast<int>(o)); }
 
 // Subbands in QCD order, LL first then HL, LH, HH from the coarsest level to the finest, which is
@@ -108,7 +114,7 @@ CodingPlan make_plan(const SourceImage& image, const EncodeParams& params) {
         q.exponents.push_back(range);
         continue;
       }
-      const double norm = params.levels == 0 ? 1.0 : dwt::synthesis_norm(kernel97, std::max(level, 1), static_cast<dwt::Orientation>(static_cast<int>(o)));
+      const double norm = params.levels == 0 ? 1.0 : dwt::synthesis_norm(kernel97, std::max(level, 1), o);
       const StepSize step = encode_step(params.base_step * std::ldexp(1.0, q.precision) / norm, range);
       q.exponents.push_back(step.exponent);
       q.mantissas.push_back(step.mantissa);

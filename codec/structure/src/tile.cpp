@@ -14,8 +14,6 @@ std::int64_t ceil_shift_signed(std::int64_t a, int e) {
   return a >= 0 ? (a + d - 1) / d : -((-a) / d);
 }
 
-dwt::Orientation to_dwt(BandOrientation o) { return static_cast<dwt::Orientation>(static_cast<int>(o)); }
-
 Subband make_subband(const TileComponent& tc, const std::vector<dwt::LevelGeometry>& levels, int nb, BandOrientation o) {
   Subband b;
   b.orientation = o;
@@ -24,7 +22,7 @@ Subband make_subband(const TileComponent& tc, const std::vector<dwt::LevelGeomet
   if (nb == 0)
     b.layout = dwt::LayoutRect{0, 0, static_cast<int>(tc.rect.width()), static_cast<int>(tc.rect.height())};
   else
-    b.layout = dwt::band_rect(levels, nb, to_dwt(o));
+    b.layout = dwt::band_rect(levels, nb, o);
   // The DWT's Mallat layout and B-15 are two statements of the same split; they must agree.
   if (b.layout.width != b.rect.width() || b.layout.height != b.rect.height())
     throw EncodeError("internal: subband geometry disagrees with the DWT layout");

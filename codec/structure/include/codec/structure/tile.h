@@ -14,7 +14,9 @@ namespace codec {
 // resolution also cut into precincts and each precinct's share of a subband into code-blocks. This
 // is geometry only; coding results live beside it, indexed by CodeBlock::index.
 
-enum class BandOrientation { LL = 0, HL = 1, LH = 2, HH = 3 };
+// The subband orientations are the wavelet engine's own (LL, HL, LH, HH, as T.800 numbers them),
+// so that geometry, quantisation and the DWT pass them to each other without conversions.
+using BandOrientation = dwt::Orientation;
 
 // Per component coding style, as COD/COC state it.
 struct CodingStyle {
