@@ -1,6 +1,6 @@
 // Tests for the whole performer (thesis 3.6): the body and the face merged into one mesh bound to the
 // skeleton (character), the integrated deformation of equation 3.20 (character_deform), and the
-// `performer pose` command (performer/src/cli/pose.cpp, compiled into this test).
+// `performer pose` command (performer/cli/pose.cpp, compiled into this test).
 
 #include <gtest/gtest.h>
 
@@ -23,7 +23,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "../performer/src/cli/pose.h"
+#include "../performer/cli/pose.h"
 #include "performer/bvh.h"
 #include "performer/body_mesh.h"
 #include "performer/character.h"

@@ -29,6 +29,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
+#ifndef PERFORMER_SPEAKS
+#error "PERFORMER_SPEAKS must say whether the performer was built with speech (see tests/CMakeLists.txt)"
+#endif
+// Whether the performer can speak text (GPUJ2K_PERFORMER_SPEECH); without it `--text` is refused.
+constexpr bool kPerformerSpeaks = PERFORMER_SPEAKS;
+constexpr const char* kNoSpeech = "speech was not built (GPUJ2K_PERFORMER_SPEECH=OFF); this test speaks text";
+
 struct RunResult {
   int exit_code = -1;  // -1 also when the tool died from a signal
   std::string out, err;
@@ -169,6 +176,7 @@ std::size_t count_lines(const std::string& text) {
 // shows the n of 你 (viseme N); `face` then writes one PLY per frame of that CSV, each with the
 // procedural head's vertex count in its header.
 TEST(PerformerCli, VisemesThenFace) {
+  if (!kPerformerSpeaks) GTEST_SKIP() << kNoSpeech;
   const ScratchFolder dir("visemes_face");
   const RunResult v = run_performer({"visemes", "--lang", "yue", "--text", "你好", "--fps", "25", "-o",
                                      (dir / "w.csv").string(), "--wav", (dir / "hello.wav").string(), "--no-blink"});
@@ -198,16 +206,18 @@ TEST(PerformerCli, VisemesThenFace) {
 TEST(PerformerCli, VisemesAndFaceBadInput) {
   const ScratchFolder dir("visemes_bad");
   const std::string out = (dir / "w.csv").string();
-  const RunResult lang = run_performer({"visemes", "--lang", "xx", "--text", "hi", "-o", out});
-  EXPECT_EQ(lang.exit_code, 1);
-  expect_one_error_line(lang);
-  EXPECT_NE(lang.err.find("'xx'"), std::string::npos) << lang.err;
-  EXPECT_FALSE(fs::exists(out));
+  if (kPerformerSpeaks) {
+    const RunResult lang = run_performer({"visemes", "--lang", "xx", "--text", "hi", "-o", out});
+    EXPECT_EQ(lang.exit_code, 1);
+    expect_one_error_line(lang);
+    EXPECT_NE(lang.err.find("'xx'"), std::string::npos) << lang.err;
+    EXPECT_FALSE(fs::exists(out));
 
-  const RunResult hanzi = run_performer({"visemes", "--lang", "cmn-latn-pinyin", "--text", "你好", "-o", out});
-  EXPECT_EQ(hanzi.exit_code, 1);
-  expect_one_error_line(hanzi);
-  EXPECT_FALSE(fs::exists(out));
+    const RunResult hanzi = run_performer({"visemes", "--lang", "cmn-latn-pinyin", "--text", "你好", "-o", out});
+    EXPECT_EQ(hanzi.exit_code, 1);
+    expect_one_error_line(hanzi);
+    EXPECT_FALSE(fs::exists(out));
+  }
 
   const RunResult two = run_performer({"visemes", "--lang", "en-us", "--text", "hi", "--rhubarb", "x.tsv", "-o", out});
   EXPECT_EQ(two.exit_code, 1);
@@ -234,9 +244,29 @@ TEST(PerformerCli, VisemesAndFaceBadInput) {
   EXPECT_NE(gltf.err.find("/nonexistent/avatar.glb"), std::string::npos) << gltf.err;
 }
 
+// Built without speech, `--text` is one line saying so, and nothing is written; lip sync from a
+// weight track still drives the face.
+TEST(PerformerCli, TextWithoutSpeechIsOneLineAndNoOutput) {
+  if (kPerformerSpeaks) GTEST_SKIP() << "speech is built; this checks the performer built without it";
+  const ScratchFolder dir("no_speech");
+  const RunResult v = run_performer({"visemes", "--lang", "en-us", "--text", "hi", "-o", (dir / "w.csv").string(),
+                                     "--wav", (dir / "hi.wav").string()});
+  EXPECT_EQ(v.exit_code, 1);
+  expect_one_error_line(v);
+  EXPECT_NE(v.err.find("speech was not built"), std::string::npos) << v.err;
+  EXPECT_TRUE(fs::is_empty(dir.path())) << "no weights, no WAV, no temporary";
+
+  const TempFile weights("w.csv", "time,AA\n0,1\n0.04,0.5\n");
+  const RunResult f = run_performer({"face", "--weights", weights.str(), "-o", (dir / "frames").string()});
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  EXPECT_TRUE(fs::exists(dir / "frames" / "frame_00000.ply"));
+  EXPECT_TRUE(fs::exists(dir / "frames" / "frame_00001.ply"));
+}
+
 // The whole performer from the command line: speech drives the face while a CMU capture drives
 // the body; one mesh per BVH frame. Bad frame ranges are one line and write nothing.
 TEST(PerformerCli, PoseWithSpeech) {
+  if (!kPerformerSpeaks) GTEST_SKIP() << kNoSpeech;
   const char* root = std::getenv("GPUJ2K_SOURCE_DIR");
   if (root == nullptr) GTEST_SKIP() << "GPUJ2K_SOURCE_DIR is not set (run through ctest); skipping the CMU test";
   const fs::path bvh = fs::path(root) / ".." / "shared" / "assets" / "bvh" / "cmu_131_01.bvh";
@@ -289,6 +319,7 @@ double wav_seconds(const fs::path& wav) {
 }
 
 TEST(PerformerCli, RenderWritesVideoWithTheSpeech) {
+  if (!kPerformerSpeaks) GTEST_SKIP() << kNoSpeech;
   const char* root = std::getenv("GPUJ2K_SOURCE_DIR");
   if (root == nullptr) GTEST_SKIP() << "GPUJ2K_SOURCE_DIR is not set (run through ctest); skipping the CMU test";
   const fs::path bvh = fs::path(root) / ".." / "shared" / "assets" / "bvh" / "cmu_131_01.bvh";
@@ -367,8 +398,11 @@ TEST(PerformerCli, RenderGltfAvatarWritesVideoAndShowsTheAvatar) {
   ASSERT_EQ(made.exit_code, 0) << made.err;
   ASSERT_TRUE(fs::exists(avatar));
 
-  const RunResult r = run_performer({"render", "--gltf", avatar, "--bvh", bvh.string(), "--frames", "0:9", "--size",
-                                     "160x120", "--lang", "en-us", "--text", "Hi", "-o", (dir / "out.mp4").string()});
+  // With speech when it is built; the video is checked the same either way.
+  std::vector<std::string> video_args = {"render", "--gltf", avatar, "--bvh", bvh.string(), "--frames", "0:9", "--size",
+                                         "160x120", "-o", (dir / "out.mp4").string()};
+  if (kPerformerSpeaks) video_args.insert(video_args.end(), {"--lang", "en-us", "--text", "Hi"});
+  const RunResult r = run_performer(video_args);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("38 of 38 joints follow the clip by name"), std::string::npos) << r.err;
   const std::size_t at = r.err.find(" frames written to ");
