@@ -1,5 +1,5 @@
 // Rate control for HT code-blocks (EncodeParams::ht with byte or PSNR targets), checked from
-// outside: files meet byte targets within [99.5 %, 100 %], decode in OpenJPEG, Grok and OpenJPH
+// outside: files meet byte targets within [99.5 %, 100 %], decode in OpenJPEG and OpenJPH
 // alike, meet PSNR targets, lose nothing to candidate skipping against coding every plane, and how
 // far they fall behind our EBCOT encode at the same size is bounded and reported.
 #include <gtest/gtest.h>
@@ -135,9 +135,13 @@ TEST(J2kHtRate, ByteTargetsOnTheKodakPhotographs) {
   }
 }
 
-// One photograph at the three rates through OpenJPEG, Grok and OpenJPH: every decoder gives the
-// same picture (HT cleanups from many different planes, signalled by the missing MSBs).
-TEST(J2kHtRate, DecodesAlikeInEveryDecoder) {
+// One photograph at the three rates through OpenJPEG and OpenJPH: both give the same picture (HT
+// cleanups from many different planes, signalled by the missing MSBs, many followed by SigProp and
+// MagRef passes in a refinement segment). Not Grok: grk_decompress 10.0.5 hands its HT block
+// decoder the whole codeword as the cleanup segment with a refinement segment of length 0 (its
+// t1 glue passes lengths2 = 0), so it fails on any block with refinement passes ("Error in HT
+// block coder"); the cleanup-only streams of j2k_ht_test decode in it.
+TEST(J2kHtRate, DecodesAlikeInOpenJpegAndOpenJph) {
   const fs::path file = test_support::kodak_photo(5);
   REQUIRE_SHARED_FILE(file);
   const imageio::Image img = imageio::read_image(file.string());
@@ -148,10 +152,8 @@ TEST(J2kHtRate, DecodesAlikeInEveryDecoder) {
     p.threads = 2;
     write_bytes(s / "x.j2k", codec::encode(codec::to_source_image(img, "image"), p, codec::FileFormat::Codestream));
     const double opj = psnr_rgb(img, decode_with("opj_decompress", s / "x.j2k", s / "opj.png"));
-    const double grk = psnr_rgb(img, decode_with("grk_decompress", s / "x.j2k", s / "grk.png", "-H 1"));
     const double ojph = psnr_rgb(img, decode_with("ojph_expand", s / "x.j2k", s / "ojph.ppm"));
     EXPECT_GT(opj, bpp < 0.5 ? 20.0 : 25.0);
-    EXPECT_NEAR(grk, opj, 0.01);
     EXPECT_NEAR(ojph, opj, 0.01);
   }
 }
@@ -179,7 +181,8 @@ TEST(J2kHtRate, PsnrTargetsLandJustAbove) {
 // it differs a PSNR within 0.01 dB. Not identical by construction: a plane that is not on the hull
 // of every plane can be on the hull of the three coded, and be chosen, where full coding takes a
 // neighbour; and the greedy fill of the last bytes then differs. Measured on photographs 1-4 at
-// the three rates: 5 of 12 files identical, the others -0.005 to +0.005 dB.
+// the three rates, with SigProp and MagRef points: 8 of 12 files identical, the others -0.008 to
+// +0.007 dB.
 TEST(J2kHtRate, CandidateSkippingIsNoWorseThanCodingEveryPlane) {
   std::vector<int> photos = photographs();
   if (photos.empty()) GTEST_SKIP() << "no Kodak photographs under " << (test_support::shared_dir() / "testimages" / "kodak");
