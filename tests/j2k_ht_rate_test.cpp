@@ -77,11 +77,11 @@ constexpr double kRates[] = {0.25, 0.75, 2.0};
 
 // The photographs at 0.25, 0.75 and 2 bpp: the HT file is within [99.5 %, 100 %] of its target,
 // and its PSNR over RGB is compared with our EBCOT encode of the same target (decoded by
-// opj_decompress). Measured on the 16 photographs (README, "HT rate control"): mean -0.60 / -0.80
-// / -0.94 dB, worst -1.05 / -1.19 / -1.72 dB at the three rates. Issue 16 asks for 0.5 dB; the
-// cleanup-only HT coder does not reach it (one truncation point per bit-plane, and HT's coding
-// costs some 6 % more bytes than EBCOT's at the same quantisation). The bounds below keep what is
-// reached from regressing.
+// opj_decompress). Measured on the 16 photographs with SigProp and MagRef points (README, "HT rate
+// control"): mean -0.54 / -0.64 / -0.67 dB, worst -0.97 / -0.98 / -1.13 dB at the three rates
+// (cleanups alone: -0.60 / -0.80 / -0.94, worst -1.72). Issue 16 asks for 0.5 dB; HT's coding
+// costs some 6-10 % more bytes than EBCOT's at the same quantisation, and that is most of what is
+// left. The bounds below keep what is reached from regressing.
 TEST(J2kHtRate, ByteTargetsOnTheKodakPhotographs) {
   const std::vector<int> photos = photographs();
   if (photos.empty()) GTEST_SKIP() << "no Kodak photographs under " << (test_support::shared_dir() / "testimages" / "kodak");
@@ -123,7 +123,7 @@ TEST(J2kHtRate, ByteTargetsOnTheKodakPhotographs) {
     const double gap = c.ht.db - c.ebcot.db;
     std::printf("kodim%02d %.2f bpp: HT %zu bytes %.3f dB, EBCOT %zu bytes %.3f dB, HT - EBCOT %+.3f dB\n", c.photo, c.bpp,
                 c.ht.bytes, c.ht.db, c.ebcot.bytes, c.ebcot.db, gap);
-    EXPECT_GT(gap, -2.0);
+    EXPECT_GT(gap, -1.5);
     gaps[c.bpp].push_back(gap);
   }
   for (const auto& [bpp, list] : gaps) {
@@ -131,7 +131,7 @@ TEST(J2kHtRate, ByteTargetsOnTheKodakPhotographs) {
     for (double g : list) mean += g / static_cast<double>(list.size());
     std::printf("%.2f bpp: HT - EBCOT mean %+.3f dB, worst %+.3f dB over %zu photographs\n", bpp, mean,
                 *std::min_element(list.begin(), list.end()), list.size());
-    EXPECT_GT(mean, -1.1) << "at " << bpp << " bpp";
+    EXPECT_GT(mean, -0.8) << "at " << bpp << " bpp";
   }
 }
 
