@@ -3,12 +3,16 @@
 // with its bit-unstuffing, CxtVLC decoding by searching the table's rows, U-VLC, the exponent
 // predictor and MagSgn with the EMB's implied bits), which must recover every random block the
 // encoder codes: the exact magnitudes and signs at cleanup plane 0, and |q| >> p with its sign at
-// plane p. Every code-block shape, every bit-plane count. The decoders in j2k_ht_test then prove
-// the same through OpenJPEG, Grok and OpenJPH.
+// plane p. Every code-block shape, every bit-plane count. The same for the SigProp and MagRef
+// refinement passes after a cleanup on plane p: a model of their raw streams (forwards and
+// backwards in the refinement segment, each with its bit-stuffing) and of which samples SigProp
+// visits recovers plane p - 1. The decoders in j2k_ht_test and j2k_ht_rate_test then prove the
+// same through OpenJPEG, Grok and OpenJPH.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <random>
@@ -273,6 +277,116 @@ Decoded decode_cleanup(const std::vector<std::uint8_t>& d, int width, int height
   return out;
 }
 
+// ---- The refinement passes' model decoder ------------------------------------------------------
+
+// SigProp bits (T.814 7.1.5): forwards from the refinement segment's start, least significant bit
+// first; a byte after 0xFF gives 7 bits; 0s past the segment (`size` bytes: a decoder given only
+// the SigProp pass sees the segment end after it).
+class SigPropReader {
+ public:
+  SigPropReader(const std::vector<std::uint8_t>& d, std::size_t start, std::size_t size) : d_(d), pos_(start), end_(start + size) {}
+  int bit() {
+    if (left_ == 0) {
+      current_ = pos_ < end_ ? d_[pos_] : 0;
+      ++pos_;
+      left_ = previous_ff_ ? 7 : 8;
+      previous_ff_ = current_ == 0xFF;
+      used_ = 0;
+    }
+    --left_;
+    return static_cast<int>((current_ >> used_++) & 1);
+  }
+
+ private:
+  const std::vector<std::uint8_t>& d_;
+  std::size_t pos_, end_;
+  int left_ = 0, used_ = 0;
+  unsigned current_ = 0;
+  bool previous_ff_ = false;
+};
+
+// MagRef bits (T.814 7.1.6): backwards from the segment's last byte, least significant bit first;
+// a byte whose predecessor (in reading order, and before the first: as if one above 0x8F) exceeds
+// 0x8F and whose low 7 bits are all 1 gives 7 bits; 0s past the segment's start.
+class MagRefReader {
+ public:
+  MagRefReader(const std::vector<std::uint8_t>& d, std::size_t start, std::size_t size) : d_(d), start_(start), pos_(start + size) {}
+  int bit() {
+    if (left_ == 0) {
+      current_ = pos_ > start_ ? d_[--pos_] : 0;
+      left_ = previous_big_ && (current_ & 0x7F) == 0x7F ? 7 : 8;
+      previous_big_ = current_ > 0x8F;
+      used_ = 0;
+    }
+    --left_;
+    return static_cast<int>((current_ >> used_++) & 1);
+  }
+
+ private:
+  const std::vector<std::uint8_t>& d_;
+  std::size_t start_, pos_;
+  int left_ = 0, used_ = 0;
+  unsigned current_ = 0;
+  bool previous_big_ = true;
+};
+
+// What a decoder knows of each sample after the cleanup (`cleanup`, plane p) and the refinement
+// passes of plane q = p - 1: mu at plane q (0: not known significant) and its sign. The SigProp
+// pass, as T.814 7.4 describes it: stripes of 4 rows, groups of 4 columns; in a group, column by
+// column and top to bottom, a sample not significant in the cleanup with one of its 8 neighbours
+// significant (in the cleanup, or by an earlier decision of this pass) reads its bit; then the
+// group's new significant samples read their signs. MagRef (7.5): stripes of 4 rows, column by
+// column, every sample significant in the cleanup reads its next bit.
+Decoded decode_refinement(const Decoded& cleanup, const std::vector<std::uint8_t>& d, std::size_t start,
+                          std::size_t sigprop_size, std::size_t segment_size, bool with_magref, int width, int height) {
+  Decoded out;
+  out.mu.assign(cleanup.mu.size(), 0);
+  out.negative = cleanup.negative;
+  std::vector<int> state(cleanup.mu.size(), 0);  // 1: significant in the cleanup, 2: made so by SigProp
+  for (std::size_t i = 0; i < cleanup.mu.size(); ++i) {
+    state[i] = cleanup.mu[i] != 0 ? 1 : 0;
+    out.mu[i] = 2 * cleanup.mu[i];  // the refined bit is added below (or is unknown: left 0)
+  }
+  auto significant = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < width && y < height && state[static_cast<std::size_t>(y * width + x)] != 0;
+  };
+  if (with_magref) {
+    MagRefReader magref(d, start, segment_size);
+    for (int y0 = 0; y0 < height; y0 += 4)
+      for (int x = 0; x < width; ++x)
+        for (int y = y0; y < std::min(y0 + 4, height); ++y)
+          if (state[static_cast<std::size_t>(y * width + x)] == 1) out.mu[static_cast<std::size_t>(y * width + x)] |= static_cast<std::uint32_t>(magref.bit());
+  }
+  SigPropReader sigprop(d, start, sigprop_size);
+  for (int y0 = 0; y0 < height; y0 += 4)
+    for (int x0 = 0; x0 < width; x0 += 4) {
+      std::vector<std::size_t> fresh;
+      for (int x = x0; x < std::min(x0 + 4, width); ++x)
+        for (int y = y0; y < std::min(y0 + 4, height); ++y) {
+          const auto i = static_cast<std::size_t>(y * width + x);
+          if (state[i] != 0) continue;
+          bool neighbour = false;
+          for (int dy2 = -1; dy2 <= 1; ++dy2)
+            for (int dx2 = -1; dx2 <= 1; ++dx2) neighbour = neighbour || ((dx2 != 0 || dy2 != 0) && significant(x + dx2, y + dy2));
+          if (neighbour && sigprop.bit()) {
+            state[i] = 2;
+            out.mu[i] = 1;
+            fresh.push_back(i);
+          }
+        }
+      for (std::size_t i : fresh) out.negative[i] = sigprop.bit();
+    }
+  return out;
+}
+
+// Squared error of a sample of magnitude m known as mu at plane q (mid-point reconstruction; at
+// plane 0 an integer index is exact).
+double squared_error(std::uint32_t m, std::uint32_t mu, int q) {
+  const double step = std::ldexp(1.0, q);
+  const double rebuilt = mu == 0 ? 0.0 : static_cast<double>(mu) * step + (q > 0 ? step / 2 : 0.0);
+  return (static_cast<double>(m) - rebuilt) * (static_cast<double>(m) - rebuilt);
+}
+
 // ---- Random blocks -----------------------------------------------------------------------------
 
 // A block whose largest magnitude has exactly `planes` bits; a mix of zero runs, small values and
@@ -347,6 +461,62 @@ void check_round_trip(const std::vector<std::int32_t>& block, int width, int hei
       return;
     }
   }
+}
+
+// A block coded from plane p with its refinement passes (HtPasses::CleanupAndRefinement): the
+// model decodes the cleanup from pass 1's bytes, then the refinement segment both as a decoder given
+// 2 passes sees it (SigProp alone, the segment cut after its bytes) and as one given 3. Every sample
+// significant in the cleanup or visited by SigProp must come out exact at plane p - 1, with its
+// sign; the others (no significant neighbour) known as 0 at that plane; and each pass's distortion
+// decrease must be what the model's reconstruction gives.
+void check_refinement(const std::vector<std::int32_t>& block, int width, int height, int planes, int p,
+                      const std::string& where) {
+  const codec::t1::EncodedBlock eb = codec::ht::encode_ht_block(codec::ht::load_ht_block(block, width, height), 31, p,
+                                                                codec::t1::Distortion::Measured,
+                                                                codec::ht::HtPasses::CleanupAndRefinement);
+  if (planes <= p) {
+    EXPECT_TRUE(eb.passes.empty()) << where;
+    return;
+  }
+  ASSERT_EQ(eb.passes.size(), 3u) << where;
+  const std::size_t l0 = eb.passes[0].length, l1 = eb.passes[1].length, l2 = eb.passes[2].length;
+  ASSERT_LE(l0, l1) << where;
+  ASSERT_LT(l1, l2) << where;  // MagRef has a bit for every sample the cleanup made significant
+  ASSERT_EQ(l2, eb.data.size()) << where;
+  expect_no_marker(eb.data, where);
+  for (std::size_t end : {l0, l1, l2}) {
+    EXPECT_NE(eb.data[end - 1], 0xFF) << where << ": a pass ends in 0xFF";
+  }
+  const std::vector<std::uint8_t> cleanup_bytes(eb.data.begin(), eb.data.begin() + static_cast<std::ptrdiff_t>(l0));
+  const Decoded cleanup = decode_cleanup(cleanup_bytes, width, height);
+  ASSERT_EQ(cleanup.mu.size(), block.size()) << where;
+  const Decoded two = decode_refinement(cleanup, eb.data, l0, l1 - l0, l1 - l0, false, width, height);
+  const Decoded three = decode_refinement(cleanup, eb.data, l0, l2 - l0, l2 - l0, true, width, height);
+  double before = 0, after_sigprop = 0, after_magref = 0;
+  for (std::size_t i = 0; i < block.size(); ++i) {
+    const std::uint32_t m = block[i] < 0 ? static_cast<std::uint32_t>(-static_cast<std::int64_t>(block[i])) : static_cast<std::uint32_t>(block[i]);
+    const int neg = block[i] < 0 ? 1 : 0;
+    const std::uint32_t exact = m >> (p - 1);
+    const bool in_cleanup = cleanup.mu[i] != 0;
+    // SigProp: new significance and sign exact where read; what it did not read stays 0.
+    const std::uint32_t sp = in_cleanup ? 0 : two.mu[i];
+    if (sp != 0 && (sp != exact || two.negative[i] != neg)) {
+      ADD_FAILURE() << where << ": sample " << i << " SigProp gives " << (two.negative[i] ? "-" : "") << sp << ", expected " << exact;
+      return;
+    }
+    if (in_cleanup ? three.mu[i] != exact : three.mu[i] != two.mu[i]) {
+      ADD_FAILURE() << where << ": sample " << i << " after MagRef " << three.mu[i] << ", expected " << exact;
+      return;
+    }
+    before += squared_error(m, cleanup.mu[i], p);
+    after_sigprop += in_cleanup ? squared_error(m, cleanup.mu[i], p) : squared_error(m, sp, p - 1);
+    after_magref += in_cleanup ? squared_error(m, three.mu[i], p - 1) : squared_error(m, sp, p - 1);
+  }
+  // Samples left unread must be those with no significant neighbour: the model found exactly the
+  // encoder's members, or the streams would have desynchronised above. Distortion decreases:
+  const double tolerance = 1e-9 * std::max(1.0, before);
+  EXPECT_NEAR(eb.passes[1].distortion_decrease, before - after_sigprop, tolerance) << where;
+  EXPECT_NEAR(eb.passes[2].distortion_decrease, after_sigprop - after_magref, tolerance) << where;
 }
 
 // ---- Tests -------------------------------------------------------------------------------------
@@ -440,6 +610,27 @@ TEST(HtBlock, FloatAndIntegerBlocksInPlaceMatchTheSpanCoder) {
   ASSERT_EQ(f.passes.size(), 1u);
   EXPECT_GT(f.passes[0].distortion_decrease, 0.9 * f.energy);
   EXPECT_LE(f.passes[0].distortion_decrease, f.energy);
+}
+
+// SigProp and MagRef after cleanups from every plane a block can have one from, on every shape
+// and bit-plane count.
+TEST(HtBlock, RefinementPassesDecodeExactlyOnEveryShapeAndPlane) {
+  std::mt19937 rng(20261125);
+  for (const auto& [w, h] : all_shapes())
+    for (int planes = 1; planes <= 31; ++planes) {
+      const auto block = random_block(rng, w, h, planes);
+      const int p = 1 + static_cast<int>(rng() % static_cast<unsigned>(planes));  // 1..planes: planes gives no pass
+      check_refinement(block, w, h, planes, p,
+                       std::to_string(w) + "x" + std::to_string(h) + ", " + std::to_string(planes) + " planes, p " + std::to_string(p));
+      if (HasFailure()) return;
+    }
+  // Every cleanup plane of one block per shape family, dense and sparse.
+  for (const auto& [w, h] : {std::pair{64, 64}, {5, 7}, {1024, 4}, {4, 1024}, {33, 31}})
+    for (int p = 1; p <= 12; ++p) {
+      const auto block = random_block(rng, w, h, 12);
+      check_refinement(block, w, h, 12, p, std::to_string(w) + "x" + std::to_string(h) + ", 12 planes, p " + std::to_string(p));
+      if (HasFailure()) return;
+    }
 }
 
 TEST(HtBlock, RejectsWhatTheStandardDoesNot) {

@@ -1,5 +1,5 @@
 // Rate control for HT code-blocks (EncodeParams::ht with byte or PSNR targets), checked from
-// outside: files meet byte targets within [99.5 %, 100 %], decode in OpenJPEG, Grok and OpenJPH
+// outside: files meet byte targets within [99.5 %, 100 %], decode in OpenJPEG and OpenJPH
 // alike, meet PSNR targets, lose nothing to candidate skipping against coding every plane, and how
 // far they fall behind our EBCOT encode at the same size is bounded and reported.
 #include <gtest/gtest.h>
@@ -77,11 +77,11 @@ constexpr double kRates[] = {0.25, 0.75, 2.0};
 
 // The photographs at 0.25, 0.75 and 2 bpp: the HT file is within [99.5 %, 100 %] of its target,
 // and its PSNR over RGB is compared with our EBCOT encode of the same target (decoded by
-// opj_decompress). Measured on the 16 photographs (README, "HT rate control"): mean -0.60 / -0.80
-// / -0.94 dB, worst -1.05 / -1.19 / -1.72 dB at the three rates. Issue 16 asks for 0.5 dB; the
-// cleanup-only HT coder does not reach it (one truncation point per bit-plane, and HT's coding
-// costs some 6 % more bytes than EBCOT's at the same quantisation). The bounds below keep what is
-// reached from regressing.
+// opj_decompress). Measured on the 16 photographs with SigProp and MagRef points (README, "HT rate
+// control"): mean -0.54 / -0.64 / -0.67 dB, worst -0.97 / -0.98 / -1.13 dB at the three rates
+// (cleanups alone: -0.60 / -0.80 / -0.94, worst -1.72). Issue 16 asks for 0.5 dB; HT's coding
+// costs some 6-10 % more bytes than EBCOT's at the same quantisation, and that is most of what is
+// left. The bounds below keep what is reached from regressing.
 TEST(J2kHtRate, ByteTargetsOnTheKodakPhotographs) {
   const std::vector<int> photos = photographs();
   if (photos.empty()) GTEST_SKIP() << "no Kodak photographs under " << (test_support::shared_dir() / "testimages" / "kodak");
@@ -123,7 +123,7 @@ TEST(J2kHtRate, ByteTargetsOnTheKodakPhotographs) {
     const double gap = c.ht.db - c.ebcot.db;
     std::printf("kodim%02d %.2f bpp: HT %zu bytes %.3f dB, EBCOT %zu bytes %.3f dB, HT - EBCOT %+.3f dB\n", c.photo, c.bpp,
                 c.ht.bytes, c.ht.db, c.ebcot.bytes, c.ebcot.db, gap);
-    EXPECT_GT(gap, -2.0);
+    EXPECT_GT(gap, -1.5);
     gaps[c.bpp].push_back(gap);
   }
   for (const auto& [bpp, list] : gaps) {
@@ -131,13 +131,17 @@ TEST(J2kHtRate, ByteTargetsOnTheKodakPhotographs) {
     for (double g : list) mean += g / static_cast<double>(list.size());
     std::printf("%.2f bpp: HT - EBCOT mean %+.3f dB, worst %+.3f dB over %zu photographs\n", bpp, mean,
                 *std::min_element(list.begin(), list.end()), list.size());
-    EXPECT_GT(mean, -1.1) << "at " << bpp << " bpp";
+    EXPECT_GT(mean, -0.8) << "at " << bpp << " bpp";
   }
 }
 
-// One photograph at the three rates through OpenJPEG, Grok and OpenJPH: every decoder gives the
-// same picture (HT cleanups from many different planes, signalled by the missing MSBs).
-TEST(J2kHtRate, DecodesAlikeInEveryDecoder) {
+// One photograph at the three rates through OpenJPEG and OpenJPH: both give the same picture (HT
+// cleanups from many different planes, signalled by the missing MSBs, many followed by SigProp and
+// MagRef passes in a refinement segment). Not Grok: grk_decompress 10.0.5 hands its HT block
+// decoder the whole codeword as the cleanup segment with a refinement segment of length 0 (its
+// t1 glue passes lengths2 = 0), so it fails on any block with refinement passes ("Error in HT
+// block coder"); the cleanup-only streams of j2k_ht_test decode in it.
+TEST(J2kHtRate, DecodesAlikeInOpenJpegAndOpenJph) {
   const fs::path file = test_support::kodak_photo(5);
   REQUIRE_SHARED_FILE(file);
   const imageio::Image img = imageio::read_image(file.string());
@@ -148,10 +152,8 @@ TEST(J2kHtRate, DecodesAlikeInEveryDecoder) {
     p.threads = 2;
     write_bytes(s / "x.j2k", codec::encode(codec::to_source_image(img, "image"), p, codec::FileFormat::Codestream));
     const double opj = psnr_rgb(img, decode_with("opj_decompress", s / "x.j2k", s / "opj.png"));
-    const double grk = psnr_rgb(img, decode_with("grk_decompress", s / "x.j2k", s / "grk.png", "-H 1"));
     const double ojph = psnr_rgb(img, decode_with("ojph_expand", s / "x.j2k", s / "ojph.ppm"));
     EXPECT_GT(opj, bpp < 0.5 ? 20.0 : 25.0);
-    EXPECT_NEAR(grk, opj, 0.01);
     EXPECT_NEAR(ojph, opj, 0.01);
   }
 }
@@ -179,7 +181,8 @@ TEST(J2kHtRate, PsnrTargetsLandJustAbove) {
 // it differs a PSNR within 0.01 dB. Not identical by construction: a plane that is not on the hull
 // of every plane can be on the hull of the three coded, and be chosen, where full coding takes a
 // neighbour; and the greedy fill of the last bytes then differs. Measured on photographs 1-4 at
-// the three rates: 5 of 12 files identical, the others -0.005 to +0.005 dB.
+// the three rates, with SigProp and MagRef points: 8 of 12 files identical, the others -0.008 to
+// +0.007 dB.
 TEST(J2kHtRate, CandidateSkippingIsNoWorseThanCodingEveryPlane) {
   std::vector<int> photos = photographs();
   if (photos.empty()) GTEST_SKIP() << "no Kodak photographs under " << (test_support::shared_dir() / "testimages" / "kodak");

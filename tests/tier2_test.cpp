@@ -659,6 +659,25 @@ TEST(PacketWriter, BypassSplitsAfterTheFourthBitPlane) {
   EXPECT_EQ(out, expect);
 }
 
+// An HT block's cleanup, SigProp and MagRef passes in one packet (T.814 Annex B): the cleanup is one
+// codeword segment and the two refinement passes another, so two lengths follow: 5 in Lblock = 3
+// bits, 15 in Lblock + floor(log2 2) = 4 bits. (As one EBCOT segment, 20 bytes in 3 + 1 bits would
+// need Lblock raised.)
+TEST(PacketWriter, HtBlocksSignalCleanupAndRefinementSegments) {
+  const EncodedBlock enc = block_with_lengths({5, 9, 20}, 0);
+  PrecinctPacketWriter writer({PrecinctBand{1, 1, {CodeBlockCoding{&enc, {3}}}}}, BlockStyle{}, codec::t2::BlockCoder::Ht);
+  Bytes out;
+  writer.write_packet(0, false, false, 0, out);
+  // 1 non-empty | 1 inclusion | 1 zero bit-planes = 0 | 1100 three passes | 0 Lblock stays 3 |
+  // 101 | 1111, padded: 1111 1000 | 1011 1110 -> F8 BE, then the 20 body bytes.
+  Bytes expect{0xF8, 0xBE};
+  for (int i = 1; i <= 20; ++i) expect.push_back(static_cast<std::uint8_t>(i));
+  EXPECT_EQ(out, expect);
+  EXPECT_TRUE(codec::t2::segment_ends_after(BlockStyle{}, 0, codec::t2::BlockCoder::Ht));
+  EXPECT_FALSE(codec::t2::segment_ends_after(BlockStyle{}, 1, codec::t2::BlockCoder::Ht));
+  EXPECT_TRUE(codec::t2::segment_ends_after(BlockStyle{}, 2, codec::t2::BlockCoder::Ht));
+}
+
 TEST(PacketWriter, EmptyPrecinctsAndOrderChecks) {
   PrecinctPacketWriter none({}, BlockStyle{});
   Bytes out;

@@ -159,7 +159,7 @@ std::size_t write_tile_packets(const CodedTile& coded, const EncodeParams& param
           }
           bands.push_back(std::move(band));
         }
-        list.emplace_back(std::move(bands), params.block_style);
+        list.emplace_back(std::move(bands), params.block_style, params.ht ? t2::BlockCoder::Ht : t2::BlockCoder::Ebcot);
       }
     }
     geometry.push_back(std::move(cg));

@@ -18,7 +18,7 @@ void add_candidates(HtCandidates& candidates, const ht::HtBlock& block, std::spa
   candidates.by_plane.resize(static_cast<std::size_t>(block.bit_planes));
   for (const int p : planes) {
     std::optional<t1::EncodedBlock>& slot = candidates.by_plane[static_cast<std::size_t>(p)];
-    if (!slot) slot = ht::encode_ht_block(block, 31, p);
+    if (!slot) slot = ht::encode_ht_block(block, 31, p, t1::Distortion::Measured, ht::HtPasses::CleanupAndRefinement);
   }
   candidates.skipped = false;
 }
@@ -28,21 +28,32 @@ t1::EncodedBlock truncation_points(HtCandidates& candidates, int bit_planes, dou
   out.bit_planes = bit_planes;
   out.energy = energy;
   out.stopped_early = candidates.skipped;
-  // The cleanups kept, highest plane first, as a stack: a new one no longer than the top's leaves
+  // The points kept, highest plane first, as a stack: a new one no longer than the top's leaves
   // the top dominated (as many bytes or fewer, and it codes more).
-  std::vector<int>& kept = candidates.pass_planes;
-  kept.clear();
-  auto length_of = [&](int p) { return candidates.by_plane[static_cast<std::size_t>(p)]->passes[0].length; };
+  struct Kept {
+    HtPoint point;
+    std::size_t length;
+    double decrease;  // from nothing to this point
+  };
+  std::vector<Kept> kept;
   for (int p = static_cast<int>(candidates.by_plane.size()) - 1; p >= 0; --p) {
-    if (!candidates.by_plane[static_cast<std::size_t>(p)]) continue;
-    while (!kept.empty() && length_of(kept.back()) >= length_of(p)) kept.pop_back();
-    kept.push_back(p);
+    const auto& candidate = candidates.by_plane[static_cast<std::size_t>(p)];
+    if (!candidate) continue;
+    double decrease = 0;
+    for (std::size_t j = 0; j < candidate->passes.size(); ++j) {
+      const t1::PassInfo& pass = candidate->passes[j];
+      decrease += pass.distortion_decrease;
+      if (j > 0 && pass.length == candidate->passes[j - 1].length) continue;
+      while (!kept.empty() && kept.back().length >= pass.length) kept.pop_back();
+      kept.push_back(Kept{HtPoint{p, static_cast<int>(j) + 1}, pass.length, decrease});
+    }
   }
+  candidates.points.clear();
   double decreased = 0;
-  for (const int p : kept) {
-    const t1::PassInfo& pass = candidates.by_plane[static_cast<std::size_t>(p)]->passes[0];
-    out.passes.push_back(t1::PassInfo{pass.length, pass.distortion_decrease - decreased, true});
-    decreased = pass.distortion_decrease;
+  for (const Kept& k : kept) {
+    candidates.points.push_back(k.point);
+    out.passes.push_back(t1::PassInfo{k.length, k.decrease - decreased, true});
+    decreased = k.decrease;
   }
   return out;
 }
@@ -55,8 +66,10 @@ void sync_missing_msbs(HtCandidates& candidates, const t1::EncodedBlock& points)
 
 int ebcot_equivalent_passes(const HtCandidates& candidates, int bit_planes, int passes) {
   if (passes == 0) return 0;
-  // EBCOT's pass 0 is the cleanup of the top plane, and each plane below adds three passes.
-  return 3 * (bit_planes - 1 - candidates.pass_planes[static_cast<std::size_t>(passes) - 1]) + 1;
+  // EBCOT's pass 0 is the cleanup of the top plane, and each plane below adds three passes:
+  // significance propagation, magnitude refinement, cleanup.
+  const HtPoint& point = candidates.point(passes);
+  return 3 * (bit_planes - 1 - point.plane) + point.passes;
 }
 
 }  // namespace codec

@@ -63,11 +63,11 @@ double bytes_per_model_bit(const CodedTile& coded, const std::vector<std::size_t
     const t1::EncodedBlock& points = coded.blocks[b];
     const std::vector<rate::HullPoint> hull = rate::convex_hull(points.passes, coded.jobs[b].weight);
     const std::size_t taken = rate::points_at_or_above(hull, threshold);
-    const int cut = taken == 0 ? points.bit_planes - 1 : c.pass_planes[static_cast<std::size_t>(hull[taken - 1].passes) - 1];
+    const int cut = taken == 0 ? points.bit_planes - 1 : c.point(hull[taken - 1].passes).plane;
     for (int p = std::max(0, cut - 2); p <= std::min(points.bit_planes - 1, cut + 2); ++p) {
       const auto& candidate = c.by_plane[static_cast<std::size_t>(p)];
       const ht::PlaneStatistics& s = stats[k][static_cast<std::size_t>(p)];
-      bytes += static_cast<double>(candidate->data.size());
+      bytes += static_cast<double>(candidate->passes[0].length);  // the cleanup's, which the model estimates
       bits += model_bits(s);
     }
   }
@@ -149,9 +149,9 @@ std::vector<HtExtension> ht_blocks_at_edges(const std::vector<CodedTile>& tiles,
       } else {
         const int k = passes[t][b].back();
         const int highest = c.highest_coded(), lowest = c.lowest_coded();
-        if (k <= 1 && highest < top)
+        if ((k == 0 || c.point(k).plane == highest) && highest < top)
           for (const int p : planes_between(highest + 1, std::min(top, highest + 2))) e.planes.push_back(p);
-        if (k > 0 && static_cast<std::size_t>(k) == c.pass_planes.size() && lowest > 0)
+        if (k > 0 && c.point(k).plane == lowest && lowest > 0)
           for (const int p : planes_between(std::max(0, lowest - 2), lowest - 1)) e.planes.push_back(p);
       }
       if (!e.planes.empty()) out.push_back(std::move(e));
@@ -189,13 +189,17 @@ void settle_ht_choices(std::vector<CodedTile>& tiles, LayerPasses& passes) {
     for (std::size_t b = 0; b < coded.blocks.size(); ++b) {
       std::vector<int>& plan = passes[t][b];
       const int k = plan.empty() ? 0 : plan.back();
+      const int kept = k > 0 ? coded.ht_candidates[b].point(k).passes : 0;
       if (k > 0) {
-        const int plane = coded.ht_candidates[b].pass_planes[static_cast<std::size_t>(k) - 1];
-        coded.blocks[b] = std::move(*coded.ht_candidates[b].by_plane[static_cast<std::size_t>(plane)]);
+        const int plane = coded.ht_candidates[b].point(k).plane;
+        t1::EncodedBlock& chosen = coded.blocks[b];
+        chosen = std::move(*coded.ht_candidates[b].by_plane[static_cast<std::size_t>(plane)]);
+        chosen.passes.resize(static_cast<std::size_t>(kept));
+        chosen.data.resize(chosen.passes.back().length);
       } else {
         coded.blocks[b].passes.clear();
       }
-      for (int& v : plan) v = v > 0 ? 1 : 0;
+      for (int& v : plan) v = v > 0 ? kept : 0;
     }
     coded.ht_candidates.clear();
   }
@@ -207,7 +211,8 @@ HtPacketPlan ht_packet_plan(const CodedTile& coded, std::size_t block, const std
   // Not included: a block with nothing (the truncation points' lengths are not of one codeword).
   static const t1::EncodedBlock nothing{};
   out.encoded = k > 0 ? &coded.ht_candidates[block].chosen(k) : &nothing;
-  for (const int v : cumulative_passes) out.cumulative_passes.push_back(v > 0 ? 1 : 0);
+  const int kept = k > 0 ? coded.ht_candidates[block].point(k).passes : 0;
+  for (const int v : cumulative_passes) out.cumulative_passes.push_back(v > 0 ? kept : 0);
   return out;
 }
 

@@ -36,8 +36,9 @@ struct HtExtension {
 // The blocks of an allocation (`passes`, rate_control.h) that may be cut short by what was coded:
 // one whose choice is the highest cleanup coded (or nothing) while higher planes are uncoded (a
 // cleanup from higher up might be worth its bytes at the threshold where this one is not), one
-// whose choice is the lowest cleanup coded above plane 0, and one skipped whose energy, bought
-// with one byte, reaches `lowest_slope` (the lowest slope the allocation takes).
+// whose choice is the lowest cleanup coded above plane 0 (or its refinement), and one skipped
+// whose energy, bought with one byte, reaches `lowest_slope` (the lowest slope the allocation
+// takes).
 std::vector<HtExtension> ht_blocks_at_edges(const std::vector<CodedTile>& tiles, const LayerPasses& passes,
                                             double lowest_slope);
 
@@ -48,13 +49,14 @@ void extend_ht_candidates(std::vector<CodedTile>& tiles, const std::vector<HtExt
 // Before measuring trial files: every coded cleanup's missing_msbs from its block's settled Mb.
 void sync_ht_missing_msbs(std::vector<CodedTile>& tiles);
 
-// After the allocation: each block's chosen cleanup takes the place of its truncation points, as
-// one pass in the first layer that has any (T.814: an HT code-block's one cleanup segment), and the
+// After the allocation: each block's chosen point takes the place of its truncation points, as
+// its codeword cut after the chosen pass (the cleanup, and SigProp and MagRef if chosen) in the
+// first layer that has any (T.814: an HT code-block's one cleanup and refinement segment), and the
 // candidates are dropped. The tiles then look as if tier-1 had coded that cleanup alone.
 void settle_ht_choices(std::vector<CodedTile>& tiles, LayerPasses& passes);
 
 // Tier-2's view of one block while candidates are open: the cleanup a truncation after
-// `cumulative_passes` (per layer) points stands for, and one pass in each layer that has any.
+// `cumulative_passes` (per layer) points stands for, and its passes in each layer that has any.
 struct HtPacketPlan {
   const t1::EncodedBlock* encoded = nullptr;
   std::vector<int> cumulative_passes;

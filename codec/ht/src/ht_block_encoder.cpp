@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cleanup_encoder.h"
+#include "refinement_encoder.h"
 #include "codec/t1/dead_zone.h"
 
 namespace codec::ht {
@@ -29,6 +30,15 @@ double value_of(const HtBlock& b, std::size_t i) {
 // index + 1/2 (as EBCOT's passes assume, codec/src/t1/distortion.h).
 double half_interval(const HtBlock& b, int p) { return !b.fractions.empty() || p > 0 ? std::ldexp(1.0, p) / 2 : 0.0; }
 
+// The squared error a sample leaves once a decoder knows its magnitude down to plane p
+// (mid-point reconstruction; 0 known planes: the value itself).
+double residual_at(const HtBlock& b, std::size_t i, int p) {
+  const double value = value_of(b, i);
+  const std::uint32_t mu = b.magnitudes[i] >> p;
+  const double residual = mu == 0 ? value : value - (static_cast<double>(mu) * std::ldexp(1.0, p) + half_interval(b, p));
+  return residual * residual;
+}
+
 // Squared error in the passes' units before any pass (the energy) and after the cleanup on plane
 // p, with a significant magnitude reconstructed at the middle of what the decoder knows of it.
 struct ErrorSums {
@@ -37,15 +47,29 @@ struct ErrorSums {
 
 ErrorSums error_sums(const HtBlock& b, int p) {
   ErrorSums s;
-  const double half = half_interval(b, p), step = std::ldexp(1.0, p);
   for (std::size_t i = 0; i < b.magnitudes.size(); ++i) {
     const double value = value_of(b, i);
     s.energy += value * value;
-    const std::uint32_t mu = b.magnitudes[i] >> p;
-    const double residual = mu == 0 ? value : value - (static_cast<double>(mu) * step + half);
-    s.after_cleanup += residual * residual;
+    s.after_cleanup += residual_at(b, i, p);
   }
   return s;
+}
+
+// Appends the SigProp and MagRef passes of plane p - 1 to a block whose cleanup on plane p is
+// `out`'s one pass: the refinement segment after the cleanup segment, each pass terminated (it
+// ends its stream) and its distortion decrease measured on the samples it changes.
+void add_refinement_passes(const HtBlock& b, int p, t1::Distortion distortion, t1::EncodedBlock& out) {
+  const RefinementSegment segment = encode_refinement(b.magnitudes, b.negative, b.width, b.height, p);
+  double sigprop_decrease = 0, magref_decrease = 0;
+  if (distortion == t1::Distortion::Measured) {
+    for (const std::size_t i : segment.became_significant) sigprop_decrease += residual_at(b, i, p) - residual_at(b, i, p - 1);
+    for (std::size_t i = 0; i < b.magnitudes.size(); ++i)
+      if ((b.magnitudes[i] >> p) != 0) magref_decrease += residual_at(b, i, p) - residual_at(b, i, p - 1);
+  }
+  const std::size_t cleanup_bytes = out.data.size();
+  out.data.insert(out.data.end(), segment.bytes.begin(), segment.bytes.end());
+  out.passes.push_back(t1::PassInfo{cleanup_bytes + segment.sigprop_bytes, sigprop_decrease, true});
+  out.passes.push_back(t1::PassInfo{out.data.size(), magref_decrease, true});
 }
 
 }  // namespace
@@ -90,7 +114,8 @@ HtBlock load_ht_block(const t1::FloatBlock& block) {
   return load_ht_block(indices, block.width, block.height, fractions);
 }
 
-t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int cleanup_plane, t1::Distortion distortion) {
+t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int cleanup_plane, t1::Distortion distortion,
+                                 HtPasses passes) {
   if (magnitude_bitplanes < 1 || magnitude_bitplanes > 31)
     throw std::invalid_argument("HT block: Mb must be 1..31, not " + std::to_string(magnitude_bitplanes));
   if (cleanup_plane < 0 || cleanup_plane >= magnitude_bitplanes)
@@ -113,6 +138,7 @@ t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int 
   out.missing_msbs = magnitude_bitplanes - 1 - cleanup_plane;
   const double decrease = distortion == t1::Distortion::Measured ? sums.energy - sums.after_cleanup : 0.0;
   out.passes.push_back(t1::PassInfo{out.data.size(), decrease, true});
+  if (passes == HtPasses::CleanupAndRefinement && cleanup_plane > 0) add_refinement_passes(b, cleanup_plane, distortion, out);
   return out;
 }
 

@@ -54,8 +54,8 @@ void append_marker(std::vector<std::uint8_t>& out, std::uint8_t code) {
 
 }  // namespace
 
-PrecinctPacketWriter::PrecinctPacketWriter(std::vector<PrecinctBand> bands, t1::BlockStyle style)
-    : bands_(std::move(bands)), style_(style) {
+PrecinctPacketWriter::PrecinctPacketWriter(std::vector<PrecinctBand> bands, t1::BlockStyle style, BlockCoder coder)
+    : bands_(std::move(bands)), style_(style), coder_(coder) {
   state_.reserve(bands_.size());
   for (const PrecinctBand& band : bands_) {
     if (band.cols < 0 || band.rows < 0) bad_plan("negative code-block count");
@@ -158,7 +158,8 @@ void PrecinctPacketWriter::write_block_header(const CodeBlockCoding& plan, BandS
   // every piece of this packet.
   const auto& passes = plan.encoded->passes;
   const std::vector<SegmentPiece> pieces =
-      split_into_segments(style_, first_pass, added, [&](int pass) { return passes[static_cast<std::size_t>(pass)].length; });
+      split_into_segments(style_, first_pass, added, [&](int pass) { return passes[static_cast<std::size_t>(pass)].length; },
+                          coder_);
   int lblock = st.lblock;
   for (const SegmentPiece& p : pieces)
     lblock = std::max(lblock, static_cast<int>(std::bit_width(p.bytes)) - floor_log2(p.passes));

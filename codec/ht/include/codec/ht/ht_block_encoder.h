@@ -50,9 +50,20 @@ HtBlock load_ht_block(std::span<const std::int32_t> coefficients, int width, int
 HtBlock load_ht_block(const t1::IntegerBlock& block);
 HtBlock load_ht_block(const t1::FloatBlock& block);
 
-// encode_ht_block on a loaded block.
+// Which passes an HT block gets: the cleanup alone, or the cleanup followed by the SigProp and
+// MagRef passes of the plane below it (T.814 7.4, 7.5).
+enum class HtPasses { Cleanup, CleanupAndRefinement };
+
+// encode_ht_block on a loaded block. With HtPasses::CleanupAndRefinement, a cleanup on plane p >= 1
+// that has a pass is followed by passes 2 and 3: SigProp and MagRef of plane p - 1, in one more
+// codeword segment (the HT refinement segment: SigProp bytes forwards, then MagRef bytes, which
+// the decoder reads backwards from the segment's end). Pass lengths are cumulative as ever, so a
+// truncation after SigProp is a prefix of the three; each pass's distortion decrease is exact
+// with mid-point reconstruction (a sample SigProp makes significant at 1.5 * 2^(p-1), one MagRef
+// refines at the middle of its halved interval). A SigProp pass with no bit to send adds no byte.
 t1::EncodedBlock encode_ht_block(const HtBlock& block, int magnitude_bitplanes, int cleanup_plane,
-                                 t1::Distortion distortion = t1::Distortion::Measured);
+                                 t1::Distortion distortion = t1::Distortion::Measured,
+                                 HtPasses passes = HtPasses::Cleanup);
 
 // What a cleanup from bit-plane p leaves and what it costs, known without coding it: the squared
 // error a decoder is left with (mid-point reconstruction, in EncodedBlock's units), and the counts

@@ -14,7 +14,11 @@ namespace codec::t2 {
 //    from pass 10 on, each bit-plane's significance + refinement passes are one raw segment and
 //    its cleanup pass one MQ segment, so segments end after passes 9, 11, 12, 14, 15, 17, 18, ...
 //  - otherwise: one segment for the whole block, so no pass ends one early.
-bool segment_ends_after(const t1::BlockStyle& style, int pass);
+// An HT code-block (BlockCoder::Ht, one HT set) has its own rule (T.814 Annex B): the cleanup
+// pass (pass 0) is the HT cleanup segment, and the SigProp and MagRef passes that follow it (1, 2)
+// the HT refinement segment; the style's EBCOT switches do not apply.
+enum class BlockCoder { Ebcot, Ht };
+bool segment_ends_after(const t1::BlockStyle& style, int pass, BlockCoder coder = BlockCoder::Ebcot);
 
 // One length field of a packet header: a run of `passes` consecutive coding passes inside one
 // codeword segment, carrying `bytes` bytes.
@@ -28,13 +32,13 @@ struct SegmentPiece {
 // decode through pass i (T1's PassInfo::length), so a piece's bytes are the difference of two.
 template <class CumulativeLength>
 std::vector<SegmentPiece> split_into_segments(const t1::BlockStyle& style, int first_pass, int count,
-                                              CumulativeLength cumulative_length) {
+                                              CumulativeLength cumulative_length, BlockCoder coder = BlockCoder::Ebcot) {
   std::vector<SegmentPiece> pieces;
   auto before = [&](int pass) -> std::size_t { return pass == 0 ? 0 : cumulative_length(pass - 1); };
   int start = first_pass;
   const int end = first_pass + count;
   for (int pass = first_pass; pass < end; ++pass) {
-    if (pass == end - 1 || segment_ends_after(style, pass)) {
+    if (pass == end - 1 || segment_ends_after(style, pass, coder)) {
       pieces.push_back(SegmentPiece{pass + 1 - start, cumulative_length(pass) - before(start)});
       start = pass + 1;
     }

@@ -5,6 +5,7 @@
 
 #include "codec/t1/block_encoder.h"
 #include "codec/t1/block_style.h"
+#include "codec/tier2/codeword_segments.h"
 #include "codec/tier2/tag_tree.h"
 
 namespace codec::t2 {
@@ -31,7 +32,9 @@ struct PrecinctBand {
 // Throws std::invalid_argument for an inconsistent plan, std::logic_error for layers out of order.
 class PrecinctPacketWriter {
  public:
-  PrecinctPacketWriter(std::vector<PrecinctBand> bands, t1::BlockStyle style);
+  // `coder`: which block coder made the blocks, for where their codeword segments end
+  // (codeword_segments.h).
+  PrecinctPacketWriter(std::vector<PrecinctBand> bands, t1::BlockStyle style, BlockCoder coder = BlockCoder::Ebcot);
 
   // Appends the packet for `layer` (layers must be written in order 0,1,2...): [SOP] header [EPH]
   // body. `packet_sequence_number` is SOP's Nsop (the packet's index in the tile, modulo 2^16).
@@ -61,6 +64,7 @@ class PrecinctPacketWriter {
   // The packet being written: each included block's new bytes, in header order (reused).
   std::vector<std::span<const std::uint8_t>> body_;
   t1::BlockStyle style_;
+  BlockCoder coder_;
   int layers_ = -1;  // from the plans; -1 while the precinct has no code-blocks
   int next_layer_ = 0;
 };

@@ -1,0 +1,156 @@
+#include "refinement_encoder.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace codec::ht {
+namespace {
+
+// SigProp bits (T.814 7.1.5): forwards, least significant bit first; a byte after 0xFF carries
+// only 7 bits (its most significant bit a stuffed 0), as in MagSgn. A decoder reads 0s past the
+// bits it needs, so the last byte is padded with 0s.
+class SigPropPacker {
+ public:
+  void put(std::uint32_t bit) {
+    tmp_ |= bit << used_;
+    if (++used_ == capacity_) {
+      bytes_.push_back(static_cast<std::uint8_t>(tmp_));
+      capacity_ = tmp_ == 0xFF ? 7 : 8;
+      tmp_ = 0;
+      used_ = 0;
+    }
+  }
+  // A last 0xFF is followed by a 0 byte (a stuffed byte of padding): the MagRef bytes that follow
+  // in the segment, or the next packet's, must not form a marker with it.
+  std::vector<std::uint8_t> finish() {
+    if (used_ > 0) bytes_.push_back(static_cast<std::uint8_t>(tmp_));
+    if (!bytes_.empty() && bytes_.back() == 0xFF) bytes_.push_back(0x00);
+    return std::move(bytes_);
+  }
+
+ private:
+  std::vector<std::uint8_t> bytes_;
+  std::uint32_t tmp_ = 0;
+  int used_ = 0, capacity_ = 8;
+};
+
+// MagRef bits (T.814 7.1.6): least significant bit first into bytes laid out backwards from the
+// segment's end, with the VLC's stuffing rule: a byte after one above 0x8F whose low 7 bits are
+// all 1 carries a stuffed 0 in bit 7. The decoder starts as if a byte above 0x8F preceded the
+// first, so the segment never ends in 0xFF. Past the end it reads 0s: the last byte is 0-padded.
+class MagRefPacker {
+ public:
+  void put(std::uint32_t bit) {
+    tmp_ |= bit << used_;
+    ++used_;
+    if (last_ > 0x8F && tmp_ == 0x7F) ++used_;  // bit 7 is a stuffed 0
+    if (used_ == 8) {
+      bytes_.push_back(static_cast<std::uint8_t>(tmp_));
+      last_ = tmp_;
+      tmp_ = 0;
+      used_ = 0;
+    }
+  }
+  // Bytes in the order written (the segment's last byte first).
+  std::vector<std::uint8_t> finish() {
+    if (used_ > 0) bytes_.push_back(static_cast<std::uint8_t>(tmp_));
+    return std::move(bytes_);
+  }
+
+ private:
+  std::vector<std::uint8_t> bytes_;
+  std::uint32_t tmp_ = 0;
+  int used_ = 0;
+  std::uint32_t last_ = 0xFF;
+};
+
+// Which samples a pass has seen significant so far: those significant in the cleanup, and those
+// the SigProp pass has made significant up to the current one. Outside the block: insignificant.
+class Significance {
+ public:
+  Significance(std::span<const std::uint32_t> magnitudes, int width, int height, int plane)
+      : width_(width), height_(height), state_(magnitudes.size()) {
+    for (std::size_t i = 0; i < magnitudes.size(); ++i) state_[i] = (magnitudes[i] >> plane) != 0 ? 1 : 0;
+  }
+  bool in_cleanup(int x, int y) const { return state_[index(x, y)] == 1; }
+  bool any(int x, int y) const { return x >= 0 && y >= 0 && x < width_ && y < height_ && state_[index(x, y)] != 0; }
+  void set_by_sigprop(int x, int y) { state_[index(x, y)] = 2; }
+  // Whether a sample has a significant neighbour among its eight.
+  bool has_significant_neighbour(int x, int y) const {
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if ((dx != 0 || dy != 0) && any(x + dx, y + dy)) return true;
+    return false;
+  }
+  std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x); }
+
+ private:
+  int width_, height_;
+  std::vector<std::uint8_t> state_;  // 0 insignificant, 1 significant in the cleanup, 2 by SigProp
+};
+
+// The SigProp pass on plane q = p - 1 (T.814 7.4): stripes of four rows, each in groups of four
+// columns; in a group, column by column and top to bottom, every sample not significant in the
+// cleanup with a significant neighbour (in the cleanup, or made significant earlier in this pass:
+// the scan is causal, so those are the ones already visited) sends bit q of its magnitude; then
+// the group's newly significant samples send their signs (1: negative), in the same order.
+void sigprop_pass(std::span<const std::uint32_t> m, std::span<const std::uint8_t> negative, int width, int height,
+                  int q, Significance& sig, SigPropPacker& out, std::vector<std::size_t>& became) {
+  for (int y0 = 0; y0 < height; y0 += 4) {
+    const int y1 = std::min(y0 + 4, height);
+    for (int x0 = 0; x0 < width; x0 += 4) {
+      const int x1 = std::min(x0 + 4, width);
+      const std::size_t group_start = became.size();
+      for (int x = x0; x < x1; ++x)
+        for (int y = y0; y < y1; ++y) {
+          if (sig.any(x, y) || !sig.has_significant_neighbour(x, y)) continue;
+          const std::size_t i = sig.index(x, y);
+          const std::uint32_t bit = (m[i] >> q) & 1;
+          out.put(bit);
+          if (bit) {
+            sig.set_by_sigprop(x, y);
+            became.push_back(i);
+          }
+        }
+      for (std::size_t k = group_start; k < became.size(); ++k) out.put(negative[became[k]] ? 1 : 0);
+    }
+  }
+}
+
+// The MagRef pass on plane q (T.814 7.5): stripes of four rows, column by column, top to bottom,
+// bit q of every sample significant in the cleanup.
+void magref_pass(std::span<const std::uint32_t> m, int width, int height, int q, const Significance& sig,
+                 MagRefPacker& out) {
+  for (int y0 = 0; y0 < height; y0 += 4)
+    for (int x = 0; x < width; ++x)
+      for (int y = y0; y < std::min(y0 + 4, height); ++y)
+        if (sig.in_cleanup(x, y)) out.put((m[sig.index(x, y)] >> q) & 1);
+}
+
+}  // namespace
+
+RefinementSegment encode_refinement(std::span<const std::uint32_t> magnitudes, std::span<const std::uint8_t> negative,
+                                    int width, int height, int plane) {
+  if (width < 1 || height < 1 || width > 1024 || height > 1024 || width * height > 4096)
+    throw std::invalid_argument("HT refinement: a code-block of " + std::to_string(width) + "x" + std::to_string(height) +
+                                " is outside 1..1024 with at most 4096 samples");
+  const auto samples = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  if (magnitudes.size() != samples || negative.size() != samples)
+    throw std::invalid_argument("HT refinement: magnitudes and signs must hold width * height samples");
+  if (plane < 1 || plane > 31) throw std::invalid_argument("HT refinement: the cleanup plane must be 1..31");
+  Significance sig(magnitudes, width, height, plane);
+  RefinementSegment out;
+  // MagRef first: it reads only the cleanup's significance, which SigProp then extends.
+  MagRefPacker magref;
+  magref_pass(magnitudes, width, height, plane - 1, sig, magref);
+  SigPropPacker sigprop;
+  sigprop_pass(magnitudes, negative, width, height, plane - 1, sig, sigprop, out.became_significant);
+  out.bytes = sigprop.finish();
+  out.sigprop_bytes = out.bytes.size();
+  const std::vector<std::uint8_t> backwards = magref.finish();
+  out.bytes.insert(out.bytes.end(), backwards.rbegin(), backwards.rend());
+  return out;
+}
+
+}  // namespace codec::ht
