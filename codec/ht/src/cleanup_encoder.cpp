@@ -17,15 +17,19 @@ namespace {
 int exponent(std::uint32_t mu) { return mu == 0 ? 0 : static_cast<int>(std::bit_width(2 * mu - 1)); }
 
 // The block's samples as the cleanup pass sees them, with 0 outside the block so that quads that
-// straddle its right or bottom edge and the neighbours of edge quads need no special cases.
+// straddle its right or bottom edge and the neighbours of edge quads need no special cases: the
+// exponents are kept with a border (two columns either side, a row above and below) wide enough
+// for every neighbour the contexts and the exponent predictor read, so no read checks bounds.
 class SampleGrid {
  public:
   SampleGrid(std::span<const std::uint32_t> mu, std::span<const std::uint8_t> negative, int width, int height)
-      : mu_(mu), negative_(negative), width_(width), height_(height), exponents_(mu.size()) {
-    for (std::size_t i = 0; i < mu.size(); ++i) exponents_[i] = static_cast<std::uint8_t>(exponent(mu[i]));
+      : mu_(mu), negative_(negative), width_(width), stride_(static_cast<std::size_t>(width) + 2 * kBorder),
+        exponents_(stride_ * (static_cast<std::size_t>(height) + 2), 0) {
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) exponents_[cell(x, y)] = static_cast<std::uint8_t>(exponent(mu[index(x, y)]));
   }
-  bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < width_ && y < height_; }
-  int exponent_at(int x, int y) const { return inside(x, y) ? exponents_[index(x, y)] : 0; }
+  // x in -2 .. width + 1, y in -1 .. height.
+  int exponent_at(int x, int y) const { return exponents_[cell(x, y)]; }
   int significant(int x, int y) const { return exponent_at(x, y) != 0 ? 1 : 0; }
   // v_n = 2 (mu - 1) + s (T.814 7.3.8), for a significant sample.
   std::uint32_t magsgn_value(int x, int y) const {
@@ -34,10 +38,15 @@ class SampleGrid {
   }
 
  private:
+  static constexpr std::size_t kBorder = 2;
   std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x); }
+  std::size_t cell(int x, int y) const {
+    return static_cast<std::size_t>(y + 1) * stride_ + static_cast<std::size_t>(x + static_cast<int>(kBorder));
+  }
   std::span<const std::uint32_t> mu_;
   std::span<const std::uint8_t> negative_;
-  int width_, height_;
+  int width_;
+  std::size_t stride_;
   std::vector<std::uint8_t> exponents_;
 };
 

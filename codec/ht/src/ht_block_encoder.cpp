@@ -1,6 +1,7 @@
 #include "codec/ht/ht_block_encoder.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <stdexcept>
@@ -25,17 +26,30 @@ double value_of(const HtBlock& b, std::size_t i) {
   return static_cast<double>(b.magnitudes[i]) + (b.fractions.empty() ? 0.0 : b.fractions[i] / 256.0);
 }
 
+// 2^p for the planes a magnitude has (p < 32): exact, without a call to ldexp in the loops over
+// samples and planes below.
+constexpr std::array<double, 33> kPowersOfTwo = [] {
+  std::array<double, 33> out{};
+  double v = 1;
+  for (double& x : out) {
+    x = v;
+    v *= 2;
+  }
+  return out;
+}();
+double two_to(int p) { return kPowersOfTwo[static_cast<std::size_t>(p)]; }
+
 // Half the interval a decoder still has for a significant magnitude after a cleanup on plane p: the
 // mid-point rule; at p = 0 the index is exact, and an irreversible coefficient is placed at
 // index + 1/2 (as EBCOT's passes assume, codec/src/t1/distortion.h).
-double half_interval(const HtBlock& b, int p) { return !b.fractions.empty() || p > 0 ? std::ldexp(1.0, p) / 2 : 0.0; }
+double half_interval(const HtBlock& b, int p) { return !b.fractions.empty() || p > 0 ? two_to(p) / 2 : 0.0; }
 
 // The squared error a sample leaves once a decoder knows its magnitude down to plane p
 // (mid-point reconstruction; 0 known planes: the value itself).
 double residual_at(const HtBlock& b, std::size_t i, int p) {
   const double value = value_of(b, i);
   const std::uint32_t mu = b.magnitudes[i] >> p;
-  const double residual = mu == 0 ? value : value - (static_cast<double>(mu) * std::ldexp(1.0, p) + half_interval(b, p));
+  const double residual = mu == 0 ? value : value - (static_cast<double>(mu) * two_to(p) + half_interval(b, p));
   return residual * residual;
 }
 
@@ -154,8 +168,7 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
     const int length = static_cast<int>(std::bit_width(m));
     insignificant[static_cast<std::size_t>(length)] += value * value;
     for (int p = 0; p < length; ++p) {
-      const double step = std::ldexp(1.0, p);
-      const double residual = value - (static_cast<double>(m >> p) * step + half_interval(b, p));
+      const double residual = value - (static_cast<double>(m >> p) * two_to(p) + half_interval(b, p));
       out[static_cast<std::size_t>(p)].error += residual * residual;
     }
   }

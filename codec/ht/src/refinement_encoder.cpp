@@ -66,27 +66,34 @@ class MagRefPacker {
 };
 
 // Which samples a pass has seen significant so far: those significant in the cleanup, and those
-// the SigProp pass has made significant up to the current one. Outside the block: insignificant.
+// the SigProp pass has made significant up to the current one. Kept with a border of insignificant
+// samples around the block, so that a sample's eight neighbours are read without bounds checks.
 class Significance {
  public:
   Significance(std::span<const std::uint32_t> magnitudes, int width, int height, int plane)
-      : width_(width), height_(height), state_(magnitudes.size()) {
-    for (std::size_t i = 0; i < magnitudes.size(); ++i) state_[i] = (magnitudes[i] >> plane) != 0 ? 1 : 0;
+      : width_(width), stride_(static_cast<std::size_t>(width) + 2),
+        state_(stride_ * (static_cast<std::size_t>(height) + 2), 0) {
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) state_[cell(x, y)] = (magnitudes[index(x, y)] >> plane) != 0 ? 1 : 0;
   }
-  bool in_cleanup(int x, int y) const { return state_[index(x, y)] == 1; }
-  bool any(int x, int y) const { return x >= 0 && y >= 0 && x < width_ && y < height_ && state_[index(x, y)] != 0; }
-  void set_by_sigprop(int x, int y) { state_[index(x, y)] = 2; }
+  bool in_cleanup(int x, int y) const { return state_[cell(x, y)] == 1; }
+  bool any(int x, int y) const { return state_[cell(x, y)] != 0; }
+  void set_by_sigprop(int x, int y) { state_[cell(x, y)] = 2; }
   // Whether a sample has a significant neighbour among its eight.
   bool has_significant_neighbour(int x, int y) const {
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx)
-        if ((dx != 0 || dy != 0) && any(x + dx, y + dy)) return true;
-    return false;
+    const std::uint8_t* above = &state_[cell(x, y) - stride_ - 1];
+    const std::uint8_t* here = above + stride_;
+    const std::uint8_t* below = here + stride_;
+    return (above[0] | above[1] | above[2] | here[0] | here[2] | below[0] | below[1] | below[2]) != 0;
   }
+  // The sample's index in the block's row-major arrays.
   std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x); }
 
  private:
-  int width_, height_;
+  std::size_t cell(int x, int y) const { return (static_cast<std::size_t>(y) + 1) * stride_ + static_cast<std::size_t>(x) + 1; }
+
+  int width_;
+  std::size_t stride_;
   std::vector<std::uint8_t> state_;  // 0 insignificant, 1 significant in the cleanup, 2 by SigProp
 };
 
