@@ -14,18 +14,18 @@ class MagSgnPacker {
  public:
   // The low `count` bits of `bits`, least significant first (count <= 32).
   void put(std::uint32_t bits, int count) {
-    for (int i = 0; i < count; ++i) {
-      tmp_ |= ((bits >> i) & 1u) << used_;
-      if (++used_ == capacity_) flush_byte();
-    }
+    if (count == 0) return;
+    acc_ |= static_cast<std::uint64_t>(bits & (0xFFFFFFFFu >> (32 - count))) << used_;
+    used_ += count;
+    while (used_ >= capacity_) flush_byte();
   }
   // Pads the last byte with 1s (a decoder reads 0xFF past the segment's MagSgn part, so the pad
   // is what it would read anyway) and drops a final 0xFF, which the decoder's padding reproduces
   // and which would otherwise form a marker with a following MEL or VLC byte.
   std::vector<std::uint8_t> finish() {
     if (used_ > 0) {
-      tmp_ |= (0xFFu << used_) & ((1u << capacity_) - 1);
-      if (tmp_ != 0xFF) bytes_.push_back(static_cast<std::uint8_t>(tmp_));
+      const std::uint32_t tmp = static_cast<std::uint32_t>(acc_) | ((0xFFu << used_) & ((1u << capacity_) - 1));
+      if (tmp != 0xFF) bytes_.push_back(static_cast<std::uint8_t>(tmp));
     } else if (!bytes_.empty() && bytes_.back() == 0xFF) {
       bytes_.pop_back();
     }
@@ -33,14 +33,16 @@ class MagSgnPacker {
   }
 
  private:
+  // The next `capacity_` bits (8, or 7 after 0xFF: bit 7 is then a stuffed 0) as one byte.
   void flush_byte() {
-    bytes_.push_back(static_cast<std::uint8_t>(tmp_));
-    capacity_ = tmp_ == 0xFF ? 7 : 8;
-    tmp_ = 0;
-    used_ = 0;
+    const auto byte = static_cast<std::uint8_t>(acc_ & ((1u << capacity_) - 1));
+    bytes_.push_back(byte);
+    acc_ >>= capacity_;
+    used_ -= capacity_;
+    capacity_ = byte == 0xFF ? 7 : 8;
   }
   std::vector<std::uint8_t> bytes_;
-  std::uint32_t tmp_ = 0;
+  std::uint64_t acc_ = 0;  // bits not yet in a byte, the next one lowest
   int used_ = 0, capacity_ = 8;
 };
 
@@ -108,21 +110,24 @@ class MelEncoder {
 class VlcPacker {
  public:
   VlcPacker() : bytes_{0xFF} {}
+  // The low `count` bits of `bits`, least significant first (count <= 32).
   void put(std::uint32_t bits, int count) {
-    for (int i = 0; i < count; ++i) {
-      tmp_ |= ((bits >> i) & 1u) << used_;
-      ++used_;
-      if (last_ > 0x8F && tmp_ == 0x7F) ++used_;  // bit 7 is a stuffed 0
-      if (used_ == 8) {
-        bytes_.push_back(static_cast<std::uint8_t>(tmp_));
-        last_ = tmp_;
-        tmp_ = 0;
-        used_ = 0;
+    if (count == 0) return;
+    acc_ |= static_cast<std::uint64_t>(bits & (0xFFFFFFFFu >> (32 - count))) << used_;
+    used_ += count;
+    for (;;) {
+      // A byte after one above 0x8F whose low 7 bits are all 1 is complete with a stuffed 0.
+      if (used_ >= 7 && last_ > 0x8F && (acc_ & 0x7F) == 0x7F) {
+        emit(0x7F, 7);
+      } else if (used_ >= 8) {
+        emit(static_cast<std::uint32_t>(acc_ & 0xFF), 8);
+      } else {
+        break;
       }
     }
   }
   bool has_partial_byte() const { return used_ > 0; }
-  std::uint8_t partial_byte() const { return static_cast<std::uint8_t>(tmp_); }
+  std::uint8_t partial_byte() const { return static_cast<std::uint8_t>(acc_); }
   std::uint8_t partial_mask() const { return static_cast<std::uint8_t>((1u << used_) - 1); }
   // Whether the pending byte is the one that holds Scup's low nibble (then it may not be fused
   // with the MEL's last byte: the nibble would overwrite MEL bits).
@@ -131,8 +136,14 @@ class VlcPacker {
   std::vector<std::uint8_t>& bytes() { return bytes_; }
 
  private:
+  void emit(std::uint32_t byte, int bits) {
+    bytes_.push_back(static_cast<std::uint8_t>(byte));
+    last_ = byte;
+    acc_ >>= bits;
+    used_ -= bits;
+  }
   std::vector<std::uint8_t> bytes_;
-  std::uint32_t tmp_ = 0xF;
+  std::uint64_t acc_ = 0xF;  // bits not yet in a byte (at most 7 between calls), the next one lowest
   int used_ = 4;
   std::uint32_t last_ = 0xFF;
 };

@@ -59,12 +59,14 @@ struct ErrorSums {
   double energy = 0, after_cleanup = 0;
 };
 
-ErrorSums error_sums(const HtBlock& b, int p) {
+// `after_cleanup` only when measured: an encode that keeps every pass needs the energy alone.
+ErrorSums error_sums(const HtBlock& b, int p, t1::Distortion distortion) {
   ErrorSums s;
+  const bool measured = distortion == t1::Distortion::Measured;
   for (std::size_t i = 0; i < b.magnitudes.size(); ++i) {
     const double value = value_of(b, i);
     s.energy += value * value;
-    s.after_cleanup += residual_at(b, i, p);
+    if (measured) s.after_cleanup += residual_at(b, i, p);
   }
   return s;
 }
@@ -139,15 +141,19 @@ t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int 
   if (out.bit_planes > magnitude_bitplanes)
     throw std::invalid_argument("HT block: a magnitude needs " + std::to_string(out.bit_planes) + " bit-planes, over Mb = " +
                                 std::to_string(magnitude_bitplanes));
-  const ErrorSums sums = error_sums(b, cleanup_plane);
+  const ErrorSums sums = error_sums(b, cleanup_plane, distortion);
   out.energy = sums.energy;
   if (out.bit_planes <= cleanup_plane) {
     out.missing_msbs = magnitude_bitplanes;
     return out;
   }
-  std::vector<std::uint32_t> mu(b.magnitudes.size());
-  for (std::size_t i = 0; i < mu.size(); ++i) mu[i] = b.magnitudes[i] >> cleanup_plane;
-  out.data = encode_cleanup(mu, b.negative, b.width, b.height);
+  if (cleanup_plane == 0) {
+    out.data = encode_cleanup(b.magnitudes, b.negative, b.width, b.height);
+  } else {
+    std::vector<std::uint32_t> mu(b.magnitudes.size());
+    for (std::size_t i = 0; i < mu.size(); ++i) mu[i] = b.magnitudes[i] >> cleanup_plane;
+    out.data = encode_cleanup(mu, b.negative, b.width, b.height);
+  }
   out.first_pass_planes = out.bit_planes - cleanup_plane;
   out.missing_msbs = magnitude_bitplanes - 1 - cleanup_plane;
   const double decrease = distortion == t1::Distortion::Measured ? sums.energy - sums.after_cleanup : 0.0;
