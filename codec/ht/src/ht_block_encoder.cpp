@@ -90,19 +90,29 @@ void add_refinement_passes(const HtBlock& b, int p, t1::Distortion distortion, t
 
 }  // namespace
 
+namespace {
+
+// Sign and magnitude of `count` indices into the block from `first` on; returns their OR.
+std::uint32_t split_signs(const std::int32_t* indices, std::size_t count, std::uint32_t* magnitudes, std::uint8_t* negative) {
+  std::uint32_t all = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::int32_t c = indices[i];
+    magnitudes[i] = c < 0 ? static_cast<std::uint32_t>(0) - static_cast<std::uint32_t>(c) : static_cast<std::uint32_t>(c);
+    negative[i] = c < 0 ? 1 : 0;
+    all |= magnitudes[i];
+  }
+  return all;
+}
+
+}  // namespace
+
 HtBlock load_ht_block(std::span<const std::int32_t> coefficients, int width, int height, std::span<const std::uint8_t> fractions) {
   check_size(width, height);
   const auto n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   if (coefficients.size() != n) throw std::invalid_argument("HT block: expected width * height coefficients");
   if (!fractions.empty() && fractions.size() != n) throw std::invalid_argument("HT block: expected one fraction per coefficient");
   HtBlock b{width, height, std::vector<std::uint32_t>(n), std::vector<std::uint8_t>(n), {}, 0};
-  std::uint32_t all = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::int32_t c = coefficients[i];
-    b.magnitudes[i] = c < 0 ? static_cast<std::uint32_t>(0) - static_cast<std::uint32_t>(c) : static_cast<std::uint32_t>(c);
-    b.negative[i] = c < 0 ? 1 : 0;
-    all |= b.magnitudes[i];
-  }
+  const std::uint32_t all = split_signs(coefficients.data(), n, b.magnitudes.data(), b.negative.data());
   b.fractions.assign(fractions.begin(), fractions.end());
   b.bit_planes = static_cast<int>(std::bit_width(all));
   return b;
@@ -110,24 +120,32 @@ HtBlock load_ht_block(std::span<const std::int32_t> coefficients, int width, int
 
 HtBlock load_ht_block(const t1::IntegerBlock& block) {
   check_size(block.width, block.height);
-  std::vector<std::int32_t> indices(static_cast<std::size_t>(block.width) * static_cast<std::size_t>(block.height));
+  const auto w = static_cast<std::size_t>(block.width);
+  const std::size_t n = w * static_cast<std::size_t>(block.height);
+  HtBlock b{block.width, block.height, std::vector<std::uint32_t>(n), std::vector<std::uint8_t>(n), {}, 0};
+  std::uint32_t all = 0;
   for (int y = 0; y < block.height; ++y)
-    std::copy_n(block.origin + y * block.stride, block.width, indices.begin() + static_cast<std::ptrdiff_t>(y) * block.width);
-  return load_ht_block(indices, block.width, block.height);
+    all |= split_signs(block.origin + y * block.stride, w, b.magnitudes.data() + static_cast<std::size_t>(y) * w,
+                       b.negative.data() + static_cast<std::size_t>(y) * w);
+  b.bit_planes = static_cast<int>(std::bit_width(all));
+  return b;
 }
 
 HtBlock load_ht_block(const t1::FloatBlock& block) {
   check_size(block.width, block.height);
-  const auto n = static_cast<std::size_t>(block.width) * static_cast<std::size_t>(block.height);
-  std::vector<std::int32_t> indices(n);
-  std::vector<std::uint8_t> fractions(n);
+  const auto w = static_cast<std::size_t>(block.width);
+  const std::size_t n = w * static_cast<std::size_t>(block.height);
+  HtBlock b{block.width, block.height, std::vector<std::uint32_t>(n), std::vector<std::uint8_t>(n), std::vector<std::uint8_t>(n), 0};
+  std::vector<std::int32_t> row_indices(w);
+  std::uint32_t all = 0;
   for (int y = 0; y < block.height; ++y) {
     const float* row = block.origin + y * block.stride;
-    const std::size_t base = static_cast<std::size_t>(y) * static_cast<std::size_t>(block.width);
-    for (int x = 0; x < block.width; ++x)
-      indices[base + static_cast<std::size_t>(x)] = t1::quantize(row[x], block.inverse_step, fractions[base + static_cast<std::size_t>(x)]);
+    const std::size_t base = static_cast<std::size_t>(y) * w;
+    for (std::size_t x = 0; x < w; ++x) row_indices[x] = t1::quantize(row[x], block.inverse_step, b.fractions[base + x]);
+    all |= split_signs(row_indices.data(), w, b.magnitudes.data() + base, b.negative.data() + base);
   }
-  return load_ht_block(indices, block.width, block.height, fractions);
+  b.bit_planes = static_cast<int>(std::bit_width(all));
+  return b;
 }
 
 t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int cleanup_plane, t1::Distortion distortion,
