@@ -1,4 +1,4 @@
-# `cmake --install`: the codec library (libgpuj2k.so, its public header gpuj2k/encoder.h), the
+# `cmake --install`: the codec library (libgpuj2k.so, its public headers gpuj2k/*.h), the
 # OpenImageIO reader module it loads, the tools, a CMake package (find_package(gpuj2k CONFIG),
 # target gpuj2k::gpuj2k) and a pkg-config file (gpuj2k.pc). Programs find the library and the module
 # through their RUNPATH, $ORIGIN/../lib.
