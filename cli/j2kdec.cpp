@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
   int reduce = 0, layers = 0, threads = 0;
   double max_memory_mib = 2048;
   bool quiet = false;
-  app.add_option("-i,--input", input, "codestream (.j2k, .j2c, .jpc) or JP2 file")->required();
+  app.add_option("-i,--input", input, "codestream (.j2k, .j2c, .jpc), JP2 or JPH file")->required();
   app.add_option("-o,--output", output, "output image: .pgx (one file per component), .pgm/.ppm/.pnm, .pfm, or any OpenImageIO format")->required();
   app.add_option("--reduce", reduce, "discard the R finest resolution levels")->check(CLI::Range(0, 32));
   app.add_option("--layers", layers, "decode only the first L quality layers (0: all)")->check(CLI::NonNegativeNumber);
