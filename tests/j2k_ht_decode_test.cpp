@@ -12,6 +12,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <stdexcept>
 #include <iterator>
 #include <string>
 #include <vector>
@@ -252,6 +254,54 @@ TEST(J2kHtDecode, OurLossyStreamsDecodeLikeOpjDecompress) {
     EXPECT_TRUE(ours.warnings.empty()) << what;
     EXPECT_LE(max_difference(ours, test_support::decode_with("opj_decompress", s / "ours.j2k", s / "opj.png"), what), 1) << what;
   }
+}
+
+// ---- JPH files (T.814 Annex D) ----
+
+// The file type box of a JPH file: brand 'jph ', minor version 0, 'jph ' in the compatibility list;
+// then the JP2 header superbox and the codestream box, as in JP2.
+void expect_jph_boxes(const std::vector<std::uint8_t>& f) {
+  ASSERT_GT(f.size(), 40u);
+  const std::vector<std::uint8_t> signature_and_ftyp{0, 0, 0, 0x0C, 'j', 'P', ' ', ' ', 0x0D, 0x0A, 0x87, 0x0A,
+                                                     0, 0, 0, 0x14, 'f', 't', 'y', 'p', 'j', 'p', 'h', ' ',
+                                                     0, 0, 0, 0, 'j', 'p', 'h', ' '};
+  EXPECT_EQ(std::vector<std::uint8_t>(f.begin(), f.begin() + 32), signature_and_ftyp);
+  EXPECT_EQ(std::string(f.begin() + 36, f.begin() + 40), "jp2h");
+}
+
+TEST(J2kHtDecode, JphFilesDecodeInEveryDecoder) {
+  struct Case {
+    std::string what;
+    imageio::Image image;
+  };
+  const Case cases[] = {{"RGB 8-bit", image(Pattern::Mix, 83, 61, 3, 8)},
+                        {"grey 16-bit", image(Pattern::Mix, 61, 83, 1, 16)},
+                        {"RGBA 8-bit", image(Pattern::ZonePlate, 40, 33, 4, 8)}};
+  ScratchDir s;
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    const auto file = encode(c.image, ht(), codec::FileFormat::Jph);
+    expect_jph_boxes(file);
+    EXPECT_EQ(max_difference(decode(file), c.image, c.what), 0);
+    const fs::path jph = s / "x.jph";
+    test_support::write_bytes(jph, file);
+    for (const std::string tool : {"opj_decompress", "grk_decompress", "ojph_expand"}) {
+      if (!have_tool(tool)) {
+        std::cout << "[ SKIPPED  ] " << tool << " is not installed\n";
+        continue;
+      }
+      // ojph_expand writes PNM only for 1 or 3 components; TIFF keeps 4 and 16 bits.
+      const fs::path out = s / (tool + (tool == "ojph_expand" ? ".tif" : ".png"));
+      const imageio::Image theirs = test_support::decode_with(tool, jph, out, tool == "grk_decompress" ? "-H 1" : "");
+      EXPECT_EQ(max_difference(decode(file), theirs, c.what + " vs " + tool), 0) << tool;
+    }
+  }
+}
+
+TEST(J2kHtDecode, JphWithoutHtIsRefused) {
+  auto p = ht();
+  p.ht = false;
+  EXPECT_THROW(encode(image(Pattern::Mix, 16, 16, 1, 8), p, codec::FileFormat::Jph), std::invalid_argument);
 }
 
 // ---- Robustness ----
