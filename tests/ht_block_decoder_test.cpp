@@ -9,6 +9,7 @@
 #include <bit>
 #include <cstdint>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,14 @@ std::vector<std::int32_t> random_block(std::mt19937& rng, int width, int height,
   return q;
 }
 
+// A set of only a cleanup segment on `plane`.
+codec::ht::HtCodewords cleanup_only(std::span<const std::uint8_t> cleanup, int plane) {
+  codec::ht::HtCodewords set;
+  set.cleanup = cleanup;
+  set.cleanup_plane = plane;
+  return set;
+}
+
 std::int32_t expected_sample(std::int32_t q, int plane) {
   const std::uint32_t magnitude = q < 0 ? static_cast<std::uint32_t>(-static_cast<std::int64_t>(q)) : static_cast<std::uint32_t>(q);
   const std::uint32_t mu = magnitude >> plane;
@@ -50,10 +59,10 @@ std::string round_trip(const std::vector<std::int32_t>& q, int width, int height
   std::vector<std::int32_t> out(q.size(), 7);
   if (coded.passes.empty()) {
     // Nothing at or above the plane: no cleanup segment; the decoder leaves zeros.
-    codec::ht::decode_ht_block(codec::ht::HtCodewords{{}, plane}, width, height, out);
+    codec::ht::decode_ht_block(cleanup_only({}, plane), width, height, out);
   } else {
     EXPECT_EQ(coded.missing_msbs, mb - 1 - plane);
-    codec::ht::decode_ht_block(codec::ht::HtCodewords{coded.data, mb - 1 - coded.missing_msbs}, width, height, out);
+    codec::ht::decode_ht_block(cleanup_only(coded.data, mb - 1 - coded.missing_msbs), width, height, out);
   }
   for (std::size_t i = 0; i < q.size(); ++i)
     if (out[i] != expected_sample(q[i], plane))
@@ -96,7 +105,7 @@ TEST(HtBlockDecoder, AllZeroBlockAtAPlaneHasNoSegment) {
   const codec::t1::EncodedBlock coded = codec::ht::encode_ht_block(q, 64, 64, 10, 0);
   EXPECT_TRUE(coded.passes.empty());
   std::vector<std::int32_t> out(q.size(), 5);
-  codec::ht::decode_ht_block(codec::ht::HtCodewords{{}, 0}, 64, 64, out);
+  codec::ht::decode_ht_block(cleanup_only({}, 0), 64, 64, out);
   for (std::int32_t v : out) ASSERT_EQ(v, 0);
 }
 
@@ -104,9 +113,9 @@ TEST(HtBlockDecoder, MalformedSegmentsAreRefusedWithoutReadingOutside) {
   std::vector<std::int32_t> out(16 * 16);
   // Scup larger than the segment.
   const std::vector<std::uint8_t> too_long{0x00, 0x0F, 0xFF};
-  EXPECT_THROW(codec::ht::decode_ht_block(codec::ht::HtCodewords{too_long, 0}, 16, 16, out), codec::ht::HtDecodeError);
+  EXPECT_THROW(codec::ht::decode_ht_block(cleanup_only(too_long, 0), 16, 16, out), codec::ht::HtDecodeError);
   const std::vector<std::uint8_t> one_byte{0x00};
-  EXPECT_THROW(codec::ht::decode_ht_block(codec::ht::HtCodewords{one_byte, 0}, 16, 16, out), codec::ht::HtDecodeError);
+  EXPECT_THROW(codec::ht::decode_ht_block(cleanup_only(one_byte, 0), 16, 16, out), codec::ht::HtDecodeError);
   // Random segments with a valid Scup decode to something or are refused, never crash (ASan).
   std::mt19937 rng(3);
   for (int trial = 0; trial < 2000; ++trial) {
@@ -116,10 +125,155 @@ TEST(HtBlockDecoder, MalformedSegmentsAreRefusedWithoutReadingOutside) {
     d[d.size() - 1] = static_cast<std::uint8_t>(scup >> 4);
     d[d.size() - 2] = static_cast<std::uint8_t>((d[d.size() - 2] & 0xF0) | (scup & 0x0F));
     try {
-      codec::ht::decode_ht_block(codec::ht::HtCodewords{d, static_cast<int>(rng() % 20)}, 16, 16, out);
+      codec::ht::decode_ht_block(cleanup_only(d, static_cast<int>(rng() % 20)), 16, 16, out);
     } catch (const codec::ht::HtDecodeError&) {
     }
   }
+}
+
+// ---- SigProp and MagRef against a model of their encoding ---------------------------------------
+// No encoder at hand writes refinement passes (ours, ojph_compress and grk_compress code the cleanup
+// pass only), so the test writes them itself from T.814 7.4 and 7.5, stated differently from the
+// decoder: a neighbour counts with what SigProp found when it was visited earlier (stripe, then
+// column, then row), else with the cleanup's significance.
+
+// Forward bit-packing of SigProp (7 bits after 0xFF) and backward packing of MagRef (VLC stuffing).
+struct RefinementBits {
+  std::vector<std::uint8_t> forward;
+  std::uint32_t forward_byte = 0, forward_last = 0;
+  int forward_used = 0;
+  std::vector<std::uint8_t> backward;  // in the order written: the segment's last byte first
+  std::uint32_t backward_byte = 0, backward_last = 0xFF;
+  int backward_used = 0;
+
+  void sig_prop(int bit) {
+    forward_byte |= static_cast<std::uint32_t>(bit) << forward_used;
+    if (++forward_used == (forward_last == 0xFF ? 7 : 8)) {
+      forward.push_back(static_cast<std::uint8_t>(forward_byte));
+      forward_last = forward_byte;
+      forward_byte = 0;
+      forward_used = 0;
+    }
+  }
+  void mag_ref(int bit) {
+    backward_byte |= static_cast<std::uint32_t>(bit) << backward_used;
+    ++backward_used;
+    if (backward_last > 0x8F && backward_byte == 0x7F) ++backward_used;  // bit 7 stuffed
+    if (backward_used == 8) {
+      backward.push_back(static_cast<std::uint8_t>(backward_byte));
+      backward_last = backward_byte;
+      backward_byte = 0;
+      backward_used = 0;
+    }
+  }
+  std::vector<std::uint8_t> segment() {
+    if (forward_used > 0) forward.push_back(static_cast<std::uint8_t>(forward_byte));
+    if (backward_used > 0) backward.push_back(static_cast<std::uint8_t>(backward_byte));
+    std::vector<std::uint8_t> d = forward;
+    d.insert(d.end(), backward.rbegin(), backward.rend());
+    return d;
+  }
+};
+
+struct ModelRefinement {
+  std::vector<std::uint8_t> segment;
+  std::vector<std::int32_t> expected_one_pass, expected_two_passes;
+};
+
+ModelRefinement model_refinement(const std::vector<std::int32_t>& q, int w, int h, int p, bool causal) {
+  const auto n = q.size();
+  auto magnitude = [&](std::size_t i) { return static_cast<std::uint32_t>(q[i] < 0 ? -static_cast<std::int64_t>(q[i]) : q[i]); };
+  auto at = [&](int x, int y) { return static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x); };
+  std::vector<int> cleanup(n), found(n, 0);
+  for (std::size_t i = 0; i < n; ++i) cleanup[i] = (magnitude(i) >> p) != 0;
+  auto visited_before = [&](int nx, int ny, int x, int y) {
+    if (ny / 4 != y / 4) return ny / 4 < y / 4;
+    return nx < x || (nx == x && ny < y);
+  };
+  RefinementBits bits;
+  for (int y0 = 0; y0 < h; y0 += 4)
+    for (int x0 = 0; x0 < w; x0 += 4) {
+      std::vector<std::size_t> group_found;
+      for (int x = x0; x < std::min(x0 + 4, w); ++x)
+        for (int y = y0; y < std::min(y0 + 4, h); ++y) {
+          if (cleanup[at(x, y)]) continue;
+          bool neighbour = false;
+          for (int ny = y - 1; ny <= y + 1; ++ny)
+            for (int nx = x - 1; nx <= x + 1; ++nx) {
+              if ((nx == x && ny == y) || nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+              if (causal && ny / 4 > y / 4) continue;
+              neighbour |= cleanup[at(nx, ny)] || (visited_before(nx, ny, x, y) && found[at(nx, ny)]);
+            }
+          if (!neighbour) continue;
+          const int bit = static_cast<int>((magnitude(at(x, y)) >> (p - 1)) & 1);
+          bits.sig_prop(bit);
+          if (bit) {
+            found[at(x, y)] = 1;
+            group_found.push_back(at(x, y));
+          }
+        }
+      for (std::size_t i : group_found) bits.sig_prop(q[i] < 0 ? 1 : 0);
+    }
+  for (int y0 = 0; y0 < h; y0 += 4)
+    for (int x = 0; x < w; ++x)
+      for (int y = y0; y < std::min(y0 + 4, h); ++y)
+        if (cleanup[at(x, y)]) bits.mag_ref(static_cast<int>((magnitude(at(x, y)) >> (p - 1)) & 1));
+  ModelRefinement m;
+  m.segment = bits.segment();
+  m.expected_one_pass.assign(n, 0);
+  m.expected_two_passes.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int32_t sign = q[i] < 0 ? -1 : 1;
+    if (cleanup[i]) {
+      m.expected_one_pass[i] = expected_sample(q[i], p);
+      m.expected_two_passes[i] = expected_sample(q[i], p - 1);
+    } else if (found[i]) {
+      m.expected_one_pass[i] = m.expected_two_passes[i] = sign * (3 << (p - 1));
+    }
+  }
+  return m;
+}
+
+TEST(HtBlockDecoder, SigPropAndMagRefAgainstTheModel) {
+  std::mt19937 rng(1517);
+  const int shapes[][2] = {{64, 64}, {32, 32}, {4, 1024}, {1024, 4}, {17, 9}, {5, 3}, {1, 1}, {13, 64}};
+  int checked = 0;
+  for (const auto& s : shapes)
+    for (int planes : {2, 5, 12})
+      for (double density : {0.05, 0.3, 0.9})
+        for (bool causal : {false, true}) {
+          const auto q = random_block(rng, s[0], s[1], planes, density);
+          const int p = 1 + static_cast<int>(rng() % static_cast<unsigned>(planes - 1));
+          const codec::t1::EncodedBlock coded = codec::ht::encode_ht_block(q, s[0], s[1], planes, p);
+          if (coded.passes.empty()) continue;
+          const ModelRefinement m = model_refinement(q, s[0], s[1], p, causal);
+          for (int passes : {1, 2}) {
+            codec::ht::HtCodewords set = cleanup_only(coded.data, p);
+            set.refinement = m.segment;
+            set.refinement_passes = passes;
+            set.vertically_causal = causal;
+            std::vector<std::int32_t> out(q.size());
+            codec::ht::decode_ht_block(set, s[0], s[1], out);
+            const auto& want = passes == 1 ? m.expected_one_pass : m.expected_two_passes;
+            for (std::size_t i = 0; i < q.size(); ++i)
+              ASSERT_EQ(out[i], want[i]) << s[0] << "x" << s[1] << ", " << planes << " planes, cleanup plane " << p << ", "
+                                         << passes << " refinement pass(es)" << (causal ? ", causal" : "") << ": sample " << i;
+            ++checked;
+          }
+        }
+  EXPECT_GT(checked, 200);
+}
+
+TEST(HtBlockDecoder, RefinementBelowPlaneZeroIsRefused) {
+  std::mt19937 rng(5);
+  const auto q = random_block(rng, 8, 8, 4, 0.5);
+  const codec::t1::EncodedBlock coded = codec::ht::encode_ht_block(q, 8, 8, 4, 0);
+  codec::ht::HtCodewords set = cleanup_only(coded.data, 0);
+  const std::vector<std::uint8_t> refinement{0x12, 0x34};
+  set.refinement = refinement;
+  set.refinement_passes = 2;
+  std::vector<std::int32_t> out(q.size());
+  EXPECT_THROW(codec::ht::decode_ht_block(set, 8, 8, out), codec::ht::HtDecodeError);
 }
 
 }  // namespace

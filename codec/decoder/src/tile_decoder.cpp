@@ -79,58 +79,57 @@ bool is_ht(const ComponentCoding& coding) { return (coding.block_style & 0x40) !
 
 // The HT set an HT code-block decodes (T.814 7.1.1, 8.3: one set, the last whose cleanup segment
 // arrived, subsumes those before it): its cleanup segment, its plane (P missing MSBs place the first
-// set's cleanup at Mb - 1 - P; each later set codes one plane lower) and how many refinement passes
-// follow it. Returns false when no cleanup pass arrived.
-struct HtSet {
-  codec::ht::HtCodewords codewords;
-  int refinement_passes = 0;
-};
-
-bool last_ht_set(const BlockState& st, int mb, HtSet& set) {
+// set's cleanup at Mb - 1 - P; each later set, the first ones being placeholders without bytes,
+// codes one plane lower) and the refinement segment that follows it with its passes. Returns false
+// when no cleanup pass arrived.
+bool last_ht_set(const BlockState& st, int mb, codec::ht::HtCodewords& set) {
+  const std::span<const std::uint8_t> data(st.data);
   std::size_t offset = 0;
-  int pass = 0;
-  bool found = false;
+  int pass = 0, chosen = -1;  // the chosen set's index
   for (const Segment& s : st.segments) {
-    if (pass % 3 == 0 && s.bytes > 0 && offset + s.bytes <= st.data.size()) {
-      set.codewords.cleanup = std::span<const std::uint8_t>(st.data).subspan(offset, s.bytes);
-      set.codewords.cleanup_plane = mb - 1 - st.missing_msbs - pass / 3;
-      set.refinement_passes = std::min(2, st.kept_passes - pass - 1);
-      found = true;
+    if (offset + s.bytes > data.size()) break;
+    const auto bytes = data.subspan(offset, s.bytes);
+    if (pass % 3 == 0 && s.bytes > 0) {
+      chosen = pass / 3;
+      set = codec::ht::HtCodewords{};
+      set.cleanup = bytes;
+      set.cleanup_plane = mb - 1 - st.missing_msbs - chosen;
+    } else if (pass % 3 == 1 && pass / 3 == chosen) {
+      set.refinement = bytes;
+      set.refinement_passes = std::min(2, s.passes);
     }
     offset += s.bytes;
     pass += s.passes;
   }
-  return found;
+  return chosen >= 0;
 }
 
 // Tier-1 (EBCOT or HT) of one code-block into `block` (w*h), in the representation of
-// decode_code_block. Returns the refinement passes it had to leave undecoded (HT SigProp and MagRef
-// are not decoded yet: the block keeps its cleanup pass's precision, as if truncated there).
-int decode_block(const BlockState& st, int mb, int w, int h, BandOrientation orientation, const ComponentCoding& coding,
-                 std::vector<std::int32_t>& block) {
+// decode_code_block.
+void decode_block(const BlockState& st, int mb, int w, int h, BandOrientation orientation, const ComponentCoding& coding,
+                  std::vector<std::int32_t>& block) {
   if (!is_ht(coding)) {
     BlockCodewords cw{st.data, st.segments, st.kept_passes, mb - 1 - st.missing_msbs};
     decode_code_block(cw, w, h, orientation, t1::BlockStyle::from_spcod(coding.block_style), block);
-    return 0;
+    return;
   }
-  HtSet set;
-  if (!last_ht_set(st, mb, set)) return 0;
-  if (set.codewords.cleanup_plane < 0 || set.codewords.cleanup_plane > kMaxTopPlane)
-    throw DecodeError("an HT code-block's cleanup pass is on bit-plane " + std::to_string(set.codewords.cleanup_plane) +
+  codec::ht::HtCodewords set;
+  if (!last_ht_set(st, mb, set)) return;
+  if (set.cleanup_plane < 0 || set.cleanup_plane > kMaxTopPlane)
+    throw DecodeError("an HT code-block's cleanup pass is on bit-plane " + std::to_string(set.cleanup_plane) +
                       " (Mb " + std::to_string(mb) + ", " + std::to_string(st.missing_msbs) + " missing MSBs)");
+  set.vertically_causal = t1::BlockStyle::from_spcod(coding.block_style).vertically_causal;
   try {
-    codec::ht::decode_ht_block(set.codewords, w, h, block);
+    codec::ht::decode_ht_block(set, w, h, block);
   } catch (const codec::ht::HtDecodeError& e) {
     throw DecodeError(e.what());
   }
-  return std::max(0, set.refinement_passes);
 }
 
 // Tier-1 and dequantisation of every code-block of a tile-component, into its plane in the Mallat
-// layout of the (reduced) inverse DWT. Returns the HT refinement passes left undecoded.
-int decode_blocks(const TileComponent& tc, const TileComponentParams& params, const ComponentSize& size, int reduce,
-                  const std::vector<BlockState>& states, Plane& plane) {
-  int undecoded = 0;
+// layout of the (reduced) inverse DWT.
+void decode_blocks(const TileComponent& tc, const TileComponentParams& params, const ComponentSize& size, int reduce,
+                   const std::vector<BlockState>& states, Plane& plane) {
   const int kept_levels = tc.levels - reduce;
   const auto geometry = dwt::decomposition(plane.width(), plane.height(), dwt::Origin{plane.rect.x0, plane.rect.y0}, kept_levels);
   std::vector<std::int32_t> block;
@@ -156,7 +155,7 @@ int decode_blocks(const TileComponent& tc, const TileComponentParams& params, co
             if (st.kept_passes == 0) continue;
             const int w = static_cast<int>(cb.rect.width()), h = static_cast<int>(cb.rect.height());
             block.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
-            undecoded += decode_block(st, mb, w, h, band.orientation, params.coding, block);
+            decode_block(st, mb, w, h, band.orientation, params.coding, block);
             const int ox = layout.x + static_cast<int>(cb.rect.x0 - band.rect.x0);
             const int oy = layout.y + static_cast<int>(cb.rect.y0 - band.rect.y0);
             for (int y = 0; y < h; ++y)
@@ -176,7 +175,6 @@ int decode_blocks(const TileComponent& tc, const TileComponentParams& params, co
         }
     }
   }
-  return undecoded;
 }
 
 void inverse_dwt(Plane& plane, int levels, const TileDecodeSetup& setup) {
@@ -354,12 +352,7 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     const std::size_t n = static_cast<std::size_t>(plane.rect.width()) * static_cast<std::size_t>(plane.rect.height());
     if (plane.reversible) plane.ints.assign(n, 0);
     else plane.floats.assign(n, 0.0f);
-    const int undecoded = decode_blocks(tc, params.components[c], cs.siz.components[c], reduce, blocks, plane);
-    if (undecoded > 0)
-      image.warnings.push_back("tile " + std::to_string(tile_stream.index) + ", component " + std::to_string(c) + ": " +
-                               std::to_string(undecoded) +
-                               " HT refinement (SigProp/MagRef) passes are not decoded yet; those code-blocks keep their "
-                               "cleanup pass's precision");
+    decode_blocks(tc, params.components[c], cs.siz.components[c], reduce, blocks, plane);
     try {
       inverse_dwt(plane, tc.levels - reduce, setup);
     } catch (const dwt::DwtError& e) {

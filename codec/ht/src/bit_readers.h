@@ -149,4 +149,54 @@ class VlcReader {
   std::uint32_t last_ = 0;
 };
 
+// The SigProp pass's bits (T.814 7.4): bytes forwards from the start of the refinement segment
+// Dref, bits least significant first, 7 bits after 0xFF (as MagSgn); past the end, 0s.
+class SigPropReader {
+ public:
+  explicit SigPropReader(std::span<const std::uint8_t> bytes) : bytes_(bytes) {}
+  int bit() {
+    if (bits_ == 0) {
+      bits_ = last_ == 0xFF ? 7 : 8;
+      byte_ = pos_ < bytes_.size() ? bytes_[pos_] : 0;
+      ++pos_;
+      last_ = byte_;
+    }
+    const int b = byte_ & 1;
+    byte_ >>= 1;
+    --bits_;
+    return b;
+  }
+
+ private:
+  std::span<const std::uint8_t> bytes_;
+  std::size_t pos_ = 0;
+  std::uint32_t byte_ = 0, last_ = 0;
+  int bits_ = 0;
+};
+
+// The MagRef pass's bits (T.814 7.5): bytes backwards from the end of Dref, bits least significant
+// first, with the VLC's stuffing rule (a byte after one above 0x8F whose low 7 bits are all 1
+// carries 7 bits; the byte before the first counts as 0xFF); past the start, 0s.
+class MagRefReader {
+ public:
+  explicit MagRefReader(std::span<const std::uint8_t> bytes) : bytes_(bytes), pos_(bytes.size()) {}
+  int bit() {
+    if (bits_ == 0) {
+      byte_ = pos_ > 0 ? bytes_[--pos_] : 0;
+      bits_ = last_ > 0x8F && (byte_ & 0x7F) == 0x7F ? 7 : 8;
+      last_ = byte_;
+    }
+    const int b = byte_ & 1;
+    byte_ >>= 1;
+    --bits_;
+    return b;
+  }
+
+ private:
+  std::span<const std::uint8_t> bytes_;
+  std::size_t pos_;
+  std::uint32_t byte_ = 0, last_ = 0xFF;
+  int bits_ = 0;
+};
+
 }  // namespace codec::ht

@@ -71,6 +71,7 @@ class DecodedGrid {
   }
   std::uint32_t mu(std::size_t i) const { return mu_[i]; }
   bool negative(std::size_t i) const { return negative_[i] != 0; }
+  bool significant_after_cleanup(int x, int y) const { return inside(x, y) && mu_[index(x, y)] != 0; }
 
  private:
   std::size_t index(int x, int y) const {
@@ -213,10 +214,111 @@ void read_magnitudes(DecodedGrid& g, const QuadState& q, int exponent_bits, int 
   }
 }
 
+// ---- The refinement passes (T.814 7.4, 7.5) on plane p - 1 ---------------------------------------
+
+// Both passes visit samples in the order of T.800's passes: stripes of four rows, column by column
+// within a stripe, top to bottom within a column; SigProp in groups of four columns (below).
+class RefinementDecoder {
+ public:
+  RefinementDecoder(const DecodedGrid& cleanup, int width, int height, bool vertically_causal)
+      : cleanup_(cleanup), width_(width), height_(height), vertically_causal_(vertically_causal),
+        became_significant_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0),
+        negative_(became_significant_.size(), 0) {}
+
+  // SigProp (T.814 7.4): an insignificant sample with a significant neighbour among its eight gets
+  // one bit, 1 making it significant at plane p - 1. As in T.800's significance propagation pass,
+  // neighbours visited before it count with what this pass found, later ones with what the cleanup
+  // found, and with vertically causal coding (0x08) the stripe below does not count. The bits come in
+  // groups of four columns of a stripe: the significance bits of the group's samples in visiting
+  // order, then one sign bit (1: negative) for each sample that became significant, in that order.
+  void sig_prop(SigPropReader& bits) {
+    std::vector<std::size_t> found;
+    for (int y0 = 0; y0 < height_; y0 += 4) {
+      const int y1 = std::min(y0 + 4, height_);
+      for (int x0 = 0; x0 < width_; x0 += 4) {
+        found.clear();
+        for (int x = x0; x < std::min(x0 + 4, width_); ++x)
+          for (int y = y0; y < y1; ++y) {
+            if (cleanup_.significant_after_cleanup(x, y) || !has_significant_neighbour(x, y, y0)) continue;
+            if (bits.bit()) {
+              became_significant_[index(x, y)] = 1;
+              found.push_back(index(x, y));
+            }
+          }
+        for (std::size_t i : found) negative_[i] = static_cast<std::uint8_t>(bits.bit());
+      }
+    }
+  }
+
+  // MagRef (T.814 7.5): every sample significant after the cleanup pass gets its bit at plane p - 1,
+  // in visiting order.
+  void mag_ref(MagRefReader& bits, std::vector<std::uint8_t>& refinement_bit) {
+    for (int y0 = 0; y0 < height_; y0 += 4)
+      for (int x = 0; x < width_; ++x)
+        for (int y = y0; y < std::min(y0 + 4, height_); ++y)
+          if (cleanup_.significant_after_cleanup(x, y)) refinement_bit[index(x, y)] = static_cast<std::uint8_t>(bits.bit());
+  }
+
+  bool became_significant(std::size_t i) const { return became_significant_[i] != 0; }
+  bool negative(std::size_t i) const { return negative_[i] != 0; }
+
+ private:
+  std::size_t index(int x, int y) const {
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
+  }
+  bool has_significant_neighbour(int x, int y, int stripe_top) const {
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int nx = x + dx, ny = y + dy;
+        if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= width_ || ny >= height_) continue;
+        if (ny >= stripe_top + 4 && vertically_causal_) continue;
+        if (cleanup_.significant_after_cleanup(nx, ny) || became_significant_[index(nx, ny)]) return true;
+      }
+    return false;
+  }
+
+  const DecodedGrid& cleanup_;
+  int width_, height_;
+  bool vertically_causal_;
+  std::vector<std::uint8_t> became_significant_, negative_;
+};
+
 void check_size(int width, int height) {
   if (width < 1 || height < 1 || width > 1024 || height > 1024 || width * height > 4096)
     throw std::invalid_argument("HT block: a code-block of " + std::to_string(width) + "x" + std::to_string(height) +
                                 " is outside 1..1024 with at most 4096 samples");
+}
+
+// The SigProp and MagRef passes after the cleanup, and the samples they leave (see the header).
+void refine(const DecodedGrid& grid, const HtCodewords& block, int width, int height, std::span<std::int32_t> out) {
+  if (block.cleanup_plane < 1)
+    throw HtDecodeError("HT refinement passes after a cleanup pass on bit-plane 0 (there is no plane below it)");
+  const int plane = block.cleanup_plane - 1;
+  RefinementDecoder passes(grid, width, height, block.vertically_causal);
+  SigPropReader sig_prop_bits(block.refinement);
+  passes.sig_prop(sig_prop_bits);
+  const bool mag_ref = block.refinement_passes >= 2;
+  std::vector<std::uint8_t> refinement_bit;
+  if (mag_ref) {
+    refinement_bit.assign(out.size(), 0);
+    MagRefReader mag_ref_bits(block.refinement);
+    passes.mag_ref(mag_ref_bits, refinement_bit);
+  }
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const std::uint64_t mu = grid.mu(i);
+    std::uint64_t doubled = 0;  // twice the reconstructed magnitude
+    bool negative = false;
+    if (mu != 0) {
+      doubled = mag_ref ? (2 * (2 * mu + refinement_bit[i]) + 1) << plane : (2 * mu + 1) << (plane + 1);
+      negative = grid.negative(i);
+    } else if (passes.became_significant(i)) {
+      doubled = std::uint64_t{3} << plane;
+      negative = passes.negative(i);
+    }
+    if (doubled >= (std::uint64_t{1} << (kHtMaxMagnitudeBits + 1)))
+      throw HtDecodeError("HT refinement: a magnitude beyond " + std::to_string(kHtMaxMagnitudeBits) + " bits");
+    out[i] = negative ? -static_cast<std::int32_t>(doubled) : static_cast<std::int32_t>(doubled);
+  }
 }
 
 }  // namespace
@@ -268,12 +370,16 @@ void decode_ht_block(const HtCodewords& block, int width, int height, std::span<
       }
     }
   }
-  for (std::size_t i = 0; i < samples; ++i) {
-    const std::uint32_t mu = grid.mu(i);
-    if (mu == 0) continue;
-    const auto magnitude = static_cast<std::int32_t>((2 * mu + 1) << block.cleanup_plane);
-    out[i] = grid.negative(i) ? -magnitude : magnitude;
+  if (block.refinement_passes <= 0) {
+    for (std::size_t i = 0; i < samples; ++i) {
+      const std::uint32_t mu = grid.mu(i);
+      if (mu == 0) continue;
+      const auto magnitude = static_cast<std::int32_t>((2 * mu + 1) << block.cleanup_plane);
+      out[i] = grid.negative(i) ? -magnitude : magnitude;
+    }
+    return;
   }
+  refine(grid, block, width, height, out);
 }
 
 }  // namespace codec::ht
