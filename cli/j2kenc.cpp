@@ -1,6 +1,6 @@
 // j2kenc: JPEG 2000 encoder. Reads any image OpenImageIO reads (and our PNM/PFM), writes a raw
-// codestream (.j2k, .j2c, .jpc), a JP2 file (.jp2) or, with --ht, a JPH file (.jph). Errors are one line on stderr, a non-zero
-// exit, and no output file.
+// codestream (.j2k, .j2c, .jpc), a JP2 file (.jp2) or, with --ht, a JPH file (.jph). Errors are
+// one line on stderr, a non-zero exit, and no output file.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
