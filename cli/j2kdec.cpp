@@ -1,7 +1,7 @@
-// j2kdec: JPEG 2000 decoder. Reads a codestream (.j2k, .j2c, .jpc) or a JP2 file and writes PGX
-// (one file per component, NAME_0.pgx, NAME_1.pgx, ... as opj_decompress does), our PNM/PFM, or
-// anything OpenImageIO writes. Errors are one line "j2kdec: FILE: problem" on stderr, exit 1, and
-// no output file.
+// j2kdec: JPEG 2000 decoder (Part 1 and HTJ2K). Reads a codestream (.j2k, .j2c, .jpc), a JP2 or a
+// JPH file and writes PGX (one file per component, NAME_0.pgx, NAME_1.pgx, ... as opj_decompress
+// does), our PNM/PFM, or anything OpenImageIO writes. Errors are one line "j2kdec: FILE: problem"
+// on stderr, exit 1, and no output file.
 #include <CLI/CLI.hpp>
 
 #include <cmath>
@@ -68,12 +68,12 @@ void write_other(const std::string& path, const codec::DecodedImage& img) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"j2kdec: JPEG 2000 Part 1 decoder (codestreams and JP2 files)"};
+  CLI::App app{"j2kdec: JPEG 2000 decoder, Part 1 and HTJ2K (Part 15): codestreams, JP2 and JPH files"};
   std::string input, output, dwt = "cpu";
   int reduce = 0, layers = 0, threads = 0;
   double max_memory_mib = 2048;
   bool quiet = false;
-  app.add_option("-i,--input", input, "codestream (.j2k, .j2c, .jpc) or JP2 file")->required();
+  app.add_option("-i,--input", input, "codestream (.j2k, .j2c, .jpc), JP2 or JPH file")->required();
   app.add_option("-o,--output", output, "output image: .pgx (one file per component), .pgm/.ppm/.pnm, .pfm, or any OpenImageIO format")->required();
   app.add_option("--reduce", reduce, "discard the R finest resolution levels")->check(CLI::Range(0, 32));
   app.add_option("--layers", layers, "decode only the first L quality layers (0: all)")->check(CLI::NonNegativeNumber);

@@ -1,6 +1,6 @@
 // j2kenc: JPEG 2000 encoder. Reads any image OpenImageIO reads (and our PNM/PFM), writes a raw
-// codestream (.j2k, .j2c, .jpc) or a JP2 file (.jp2). Errors are one line on stderr, a non-zero
-// exit, and no output file.
+// codestream (.j2k, .j2c, .jpc), a JP2 file (.jp2) or, with --ht, a JPH file (.jph). Errors are
+// one line on stderr, a non-zero exit, and no output file.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -194,7 +194,7 @@ int main(int argc, char** argv) {
   bool lossless = false, sop = false, eph = false, quiet = false;
   int levels = 5, threads = 0, guard_bits = -1;
   app.add_option("-i,--input", input, "input image (PNG, PNM, TIFF, BMP, JPEG, ...)")->required();
-  app.add_option("-o,--output", output, "output: .j2k/.j2c/.jpc codestream or .jp2 file")->required();
+  app.add_option("-o,--output", output, "output: .j2k/.j2c/.jpc codestream, .jp2 file, or .jph file (HTJ2K, with --ht)")->required();
   app.add_flag("--lossless", lossless, "reversible 5/3 wavelet and RCT, every bit kept");
   app.add_option("--levels", levels, "decomposition levels (default 5)");
   app.add_option("--tile", tile, "tile size WxH (default: one tile)");
@@ -237,8 +237,9 @@ int main(int argc, char** argv) {
     const std::string ext = cli::lower_extension(output);
     gpuj2k::Format format;
     if (ext == ".jp2") format = gpuj2k::Format::Jp2;
+    else if (ext == ".jph") format = gpuj2k::Format::Jph;
     else if (ext == ".j2k" || ext == ".j2c" || ext == ".jpc") format = gpuj2k::Format::Codestream;
-    else throw std::invalid_argument(output + ": unknown output type (use .jp2, .j2k, .j2c or .jpc)");
+    else throw std::invalid_argument(output + ": unknown output type (use .jp2, .jph, .j2k, .j2c or .jpc)");
     const JasperOptions jo = parse_jasper(jasper);
     if (jo.lossless) lossless = lossless || *jo.lossless;
     if (jo.levels) levels = *jo.levels;

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Fuzzes the file readers for a while each: PFM and PNM (imageio), BVH and Rhubarb Lip Sync
-# (performer), and the JPEG 2000 decoder (codestreams and JP2 files, seeded with small encodes of
-# our own and the conformance streams when ../shared/conformance is there). Builds the libFuzzer
-# targets with Clang in build-fuzz/ (ASan + UBSan), seeds each with small valid files written
-# here, and runs it for FUZZ_SECONDS (default 30). A crash, a sanitizer report or a broken promise
+# (performer), and the JPEG 2000 decoder (codestreams, JP2 and JPH files, seeded with small encodes
+# of our own, HTJ2K ones included, and the conformance streams when ../shared/conformance is
+# there). Builds the libFuzzer targets with Clang in build-fuzz/ (ASan + UBSan), seeds each with
+# small valid files written here, and runs it for FUZZ_SECONDS (default 30). A crash, a sanitizer report or a broken promise
 # of a reader stops the script with libFuzzer's report and the input that caused it
 # (build-fuzz/crash-*).
 set -euo pipefail
@@ -59,6 +59,11 @@ enc -o "$corpus/codestream/precincts.j2k" --lossless --precincts 8x8 --codeblock
 enc -o "$corpus/codestream/modes.j2k" --modes bypass,reset,termall,vcausal,pterm,segsym --codeblock 8x8 --levels 2
 enc -o "$corpus/codestream/layers.j2k" --rate 1,2,4 --order CPRL --levels 2
 enc -o "$corpus/codestream/file.jp2" --levels 1
+# HTJ2K (T.814): lossless and lossy HT code-blocks, small blocks in precincts, and a JPH file.
+enc -o "$corpus/codestream/ht_lossless.j2k" --ht --lossless --levels 2
+enc -o "$corpus/codestream/ht_lossy.j2k" --ht --rate 8 --levels 2
+enc -o "$corpus/codestream/ht_precincts.j2k" --ht --lossless --precincts 8x8 --codeblock 4x4 --sop --eph --levels 2
+enc -o "$corpus/codestream/ht_file.jph" --ht --lossless --levels 1
 rm -f "$seed_image"
 # The conformance streams that are small enough to mutate quickly.
 if [ -d ../shared/conformance/streams ]; then

@@ -203,14 +203,21 @@ auto guarded(Work&& work) -> decltype(work()) {
   }
 }
 
+codec::FileFormat file_format(Format format) {
+  switch (format) {
+    case Format::Jp2: return codec::FileFormat::Jp2;
+    case Format::Jph: return codec::FileFormat::Jph;
+    case Format::Codestream: break;
+  }
+  return codec::FileFormat::Codestream;
+}
+
 std::vector<std::uint8_t> encode_source(codec::SourceImage&& image, const EncodeOptions& options, double read_ms,
                                         EncodeReport* report) {
   const codec::EncodeParams params = to_params(options, image);
   codec::EncodeReport codec_report;
   // Given up: the encoder may reuse or release the samples (it keeps the size and components).
-  std::vector<std::uint8_t> bytes =
-      codec::encode(std::move(image), params,
-                    options.format == Format::Jp2 ? codec::FileFormat::Jp2 : codec::FileFormat::Codestream, &codec_report);
+  std::vector<std::uint8_t> bytes = codec::encode(std::move(image), params, file_format(options.format), &codec_report);
   if (report) fill_report(codec_report, image, read_ms, *report);
   return bytes;
 }

@@ -109,7 +109,11 @@ Jp2Header jp2_header_for(const Siz& siz) {
   return h;
 }
 
-std::vector<std::uint8_t> wrap_jp2(const std::vector<std::uint8_t>& codestream, const Jp2Header& h) {
+namespace {
+
+// The JP2 family's box layout, shared by JP2 (brand 'jp2 ', T.800 I.5.2) and JPH (brand 'jph ',
+// T.814 Annex D): only the file type box's brand and compatibility list differ.
+std::vector<std::uint8_t> wrap(const std::vector<std::uint8_t>& codestream, const Jp2Header& h, std::uint32_t brand) {
   validate(h);
   std::vector<std::uint8_t> file;
   ByteWriter out(file);
@@ -119,9 +123,9 @@ std::vector<std::uint8_t> wrap_jp2(const std::vector<std::uint8_t>& codestream, 
   end_box(out, signature);
 
   const std::size_t ftyp = begin_box(out, fourcc("ftyp"));
-  out.u32(fourcc("jp2 "));  // BR
-  out.u32(0);               // MinV
-  out.u32(fourcc("jp2 "));  // CL: the one compatibility entry a JP2 reader looks for
+  out.u32(brand);  // BR
+  out.u32(0);      // MinV
+  out.u32(brand);  // CL: the one compatibility entry a reader of the brand looks for
   end_box(out, ftyp);
 
   bool depths_differ = false;
@@ -148,6 +152,16 @@ std::vector<std::uint8_t> wrap_jp2(const std::vector<std::uint8_t>& codestream, 
   }
   out.bytes(codestream);
   return file;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> wrap_jp2(const std::vector<std::uint8_t>& codestream, const Jp2Header& h) {
+  return wrap(codestream, h, fourcc("jp2 "));
+}
+
+std::vector<std::uint8_t> wrap_jph(const std::vector<std::uint8_t>& codestream, const Jp2Header& h) {
+  return wrap(codestream, h, fourcc("jph "));
 }
 
 }  // namespace codec::cs

@@ -13,10 +13,10 @@ namespace mk = cs::marker;
 
 namespace {
 
-std::string hex(std::uint16_t code) {
+std::string hex(std::uint32_t code, int digits_wanted = 4) {
   static const char* digits = "0123456789ABCDEF";
   std::string s = "0x";
-  for (int shift = 12; shift >= 0; shift -= 4) s += digits[(code >> shift) & 0xF];
+  for (int shift = 4 * (digits_wanted - 1); shift >= 0; shift -= 4) s += digits[(code >> shift) & 0xF];
   return s;
 }
 
@@ -90,9 +90,11 @@ ComponentCoding read_component_coding(ByteReader& body, bool precincts_defined, 
                     " is not allowed (exponents 2..10, sum at most 12)");
   at = body.file_offset();
   c.block_style = body.u8("code-block style");
-  if (c.block_style & 0x40)
-    fail_at(at, std::string(name) + ": HT code-blocks (T.814) are not supported yet");
-  if (c.block_style & 0x80) fail_at(at, std::string(name) + ": code-block style bit 7 is reserved");
+  // Bit 0x40: HT code-blocks (T.814 A.2, Table A.4); with 0x80 also set, the mixed mode where each
+  // code-block may be either, which this decoder does not read.
+  if (c.block_style & 0x80)
+    fail_at(at, std::string(name) + (c.block_style & 0x40 ? ": mixed HT / Part 1 code-blocks (T.814 style bits 0xC0) are not supported"
+                                                            : ": code-block style bit 7 is reserved"));
   at = body.file_offset();
   const int transform = body.u8("wavelet transform");
   if (transform > 1) fail_at(at, std::string(name) + ": wavelet transform " + std::to_string(transform) + " is not Part 1's 9/7 (0) or 5/3 (1)");
@@ -160,6 +162,19 @@ void read_rgn(ByteReader body, const Siz& siz, HeaderMarkers& h) {
   h.roi_shift[c] = body.u8("SPrgn");
 }
 
+// CAP (T.800 A.5.2 as amended by T.814 A.3): Pcap names the parts whose capabilities follow, one
+// 16-bit Ccap per bit set. Only Part 15's (bit 15 from the most significant: HTJ2K) is decoded here;
+// what it says (HT sets, refinement passes, magnitude bound) needs no preparation, so it is checked
+// for its length only. Any other part is refused.
+void read_cap(ByteReader body) {
+  const std::size_t at = body.file_offset();
+  const std::uint32_t pcap = body.u32("Pcap");
+  constexpr std::uint32_t kPart15 = std::uint32_t{1} << (32 - 15);
+  if (pcap & ~kPart15) fail_at(at, "CAP: capabilities of parts other than Part 15 (Pcap " + hex(pcap, 8) + ") are not supported");
+  if (pcap & kPart15) body.u16("Ccap15");
+  if (!body.at_end()) body.fail("CAP: " + std::to_string(body.remaining()) + " byte(s) beyond the Ccap fields Pcap announces");
+}
+
 // Markers allowed in both main and tile-part headers. Returns false for markers it does not know.
 bool read_common_marker(std::uint16_t code, ByteReader& in, std::size_t base, const Siz& siz, HeaderMarkers& h,
                         bool first_tile_part, std::vector<std::string>& warnings) {
@@ -214,7 +229,8 @@ bool read_common_marker(std::uint16_t code, ByteReader& in, std::size_t base, co
     case mk::PPT:
       fail_at(at, std::string(code == mk::PPM ? "PPM" : "PPT") + " (packed packet headers) is not supported yet");
     case mk::CAP:
-      fail_at(at, "CAP: Part 2 / HTJ2K extended capabilities are not supported");
+      read_cap(segment_body(in, base, "CAP"));
+      return true;
     default:
       break;
   }

@@ -57,6 +57,29 @@ int read_pass_count(HeaderBitReader& in) {
 
 int floor_log2(int n) { return std::bit_width(static_cast<unsigned>(n)) - 1; }
 
+// T.814 Annex B: an HT code-block's passes come in HT sets of a cleanup pass, then a SigProp and a
+// MagRef pass; each cleanup pass is a codeword segment of its own, and the refinement passes of a
+// set share one (Part 1's B.10.7.2 then signals each segment's length with Lblock + floor(log2 of
+// its passes in the packet) bits).
+bool ht_segment_ends_after(int pass) { return pass % 3 != 1; }
+
+bool segment_ends_after(const PacketContext& ctx, int pass) {
+  return ctx.ht ? ht_segment_ends_after(pass) : t2::segment_ends_after(ctx.style, pass);
+}
+
+// The pieces (one length field each) the passes first_pass .. first_pass + count - 1 form.
+std::vector<t2::SegmentPiece> split_passes(const PacketContext& ctx, int first_pass, int count) {
+  if (!ctx.ht) return t2::split_into_segments(ctx.style, first_pass, count, [](int) { return std::size_t{0}; });
+  std::vector<t2::SegmentPiece> pieces;
+  int start = first_pass;
+  for (int pass = first_pass; pass < first_pass + count; ++pass)
+    if (pass == first_pass + count - 1 || ht_segment_ends_after(pass)) {
+      pieces.push_back(t2::SegmentPiece{pass + 1 - start, 0});
+      start = pass + 1;
+    }
+  return pieces;
+}
+
 constexpr std::uint16_t kSop = 0xFF91, kEph = 0xFF92;
 
 std::uint16_t u16_at(std::span<const std::uint8_t> d, std::size_t pos) {
@@ -156,7 +179,7 @@ std::size_t read_packet(std::span<const std::uint8_t> data, std::size_t pos, std
             const int first_pass = st.included ? st.passes : 0;
             if (first_pass + added > kMaxPasses) fail_at(file_offset + pos, "a code-block has more coding passes than bit-planes");
             // B.10.7.2: one length per codeword segment the new passes touch.
-            auto pieces = t2::split_into_segments(ctx.style, first_pass, added, [](int) { return std::size_t{0}; });
+            auto pieces = split_passes(ctx, first_pass, added);
             for (t2::SegmentPiece& p : pieces) p.bytes = in.bits(st.lblock + floor_log2(p.passes));
             st.included = true;
             st.passes = first_pass + added;
@@ -188,7 +211,7 @@ std::size_t read_packet(std::span<const std::uint8_t> data, std::size_t pos, std
           st.segments.push_back(Segment{p.bytes, p.passes});
         }
         st.kept_passes += p.passes;
-        st.segment_open = !t2::segment_ends_after(ctx.style, pass + p.passes - 1);
+        st.segment_open = !segment_ends_after(ctx, pass + p.passes - 1);
       }
       pass += p.passes;
       pos += p.bytes;

@@ -63,6 +63,7 @@ struct PrecinctBandTrees {
 struct PacketContext {
   bool sop = false, eph = false;
   t1::BlockStyle style;
+  bool ht = false;   // HT code-blocks (T.814): segments are cleanup passes and refinement pairs
   bool keep = true;  // false: parse only (a layer or resolution the caller does not want)
 };
 

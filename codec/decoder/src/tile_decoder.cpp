@@ -9,6 +9,7 @@
 
 #include "block_decoder.h"
 #include "byte_reader.h"
+#include "codec/ht/ht_block_decoder.h"
 #include "codec/structure/error.h"
 #include "codec/tier2/progression.h"
 #include "dwt/error.h"
@@ -74,13 +75,63 @@ t2::ComponentGeometry geometry_of(const TileComponent& tc, int dx, int dy) {
   return g;
 }
 
+bool is_ht(const ComponentCoding& coding) { return (coding.block_style & 0x40) != 0; }
+
+// The HT set an HT code-block decodes (T.814 7.1.1, 8.3: one set, the last whose cleanup segment
+// arrived, subsumes those before it): its cleanup segment, its plane (P missing MSBs place the first
+// set's cleanup at Mb - 1 - P; each later set, the first ones being placeholders without bytes,
+// codes one plane lower) and the refinement segment that follows it with its passes. Returns false
+// when no cleanup pass arrived.
+bool last_ht_set(const BlockState& st, int mb, codec::ht::HtCodewords& set) {
+  const std::span<const std::uint8_t> data(st.data);
+  std::size_t offset = 0;
+  int pass = 0, chosen = -1;  // the chosen set's index
+  for (const Segment& s : st.segments) {
+    if (offset + s.bytes > data.size()) break;
+    const auto bytes = data.subspan(offset, s.bytes);
+    if (pass % 3 == 0 && s.bytes > 0) {
+      chosen = pass / 3;
+      set = codec::ht::HtCodewords{};
+      set.cleanup = bytes;
+      set.cleanup_plane = mb - 1 - st.missing_msbs - chosen;
+    } else if (pass % 3 == 1 && pass / 3 == chosen) {
+      set.refinement = bytes;
+      set.refinement_passes = std::min(2, s.passes);
+    }
+    offset += s.bytes;
+    pass += s.passes;
+  }
+  return chosen >= 0;
+}
+
+// Tier-1 (EBCOT or HT) of one code-block into `block` (w*h), in the representation of
+// decode_code_block.
+void decode_block(const BlockState& st, int mb, int w, int h, BandOrientation orientation, const ComponentCoding& coding,
+                  std::vector<std::int32_t>& block) {
+  if (!is_ht(coding)) {
+    BlockCodewords cw{st.data, st.segments, st.kept_passes, mb - 1 - st.missing_msbs};
+    decode_code_block(cw, w, h, orientation, t1::BlockStyle::from_spcod(coding.block_style), block);
+    return;
+  }
+  codec::ht::HtCodewords set;
+  if (!last_ht_set(st, mb, set)) return;
+  if (set.cleanup_plane < 0 || set.cleanup_plane > kMaxTopPlane)
+    throw DecodeError("an HT code-block's cleanup pass is on bit-plane " + std::to_string(set.cleanup_plane) +
+                      " (Mb " + std::to_string(mb) + ", " + std::to_string(st.missing_msbs) + " missing MSBs)");
+  set.vertically_causal = t1::BlockStyle::from_spcod(coding.block_style).vertically_causal;
+  try {
+    codec::ht::decode_ht_block(set, w, h, block);
+  } catch (const codec::ht::HtDecodeError& e) {
+    throw DecodeError(e.what());
+  }
+}
+
 // Tier-1 and dequantisation of every code-block of a tile-component, into its plane in the Mallat
 // layout of the (reduced) inverse DWT.
 void decode_blocks(const TileComponent& tc, const TileComponentParams& params, const ComponentSize& size, int reduce,
                    const std::vector<BlockState>& states, Plane& plane) {
   const int kept_levels = tc.levels - reduce;
   const auto geometry = dwt::decomposition(plane.width(), plane.height(), dwt::Origin{plane.rect.x0, plane.rect.y0}, kept_levels);
-  const t1::BlockStyle style = t1::BlockStyle::from_spcod(params.coding.block_style);
   std::vector<std::int32_t> block;
   for (int r = 0; r <= kept_levels; ++r) {
     const Resolution& res = tc.resolutions[static_cast<std::size_t>(r)];
@@ -104,8 +155,7 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
             if (st.kept_passes == 0) continue;
             const int w = static_cast<int>(cb.rect.width()), h = static_cast<int>(cb.rect.height());
             block.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
-            BlockCodewords cw{st.data, st.segments, st.kept_passes, mb - 1 - st.missing_msbs};
-            decode_code_block(cw, w, h, band.orientation, style, block);
+            decode_block(st, mb, w, h, band.orientation, params.coding, block);
             const int ox = layout.x + static_cast<int>(cb.rect.x0 - band.rect.x0);
             const int oy = layout.y + static_cast<int>(cb.rect.y0 - band.rect.y0);
             for (int y = 0; y < h; ++y)
@@ -280,6 +330,7 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     ctx.sop = params.cod.sop;
     ctx.eph = params.cod.eph;
     ctx.style = t1::BlockStyle::from_spcod(params.components[c].coding.block_style);
+    ctx.ht = is_ht(params.components[c].coding);
     ctx.keep = (options.max_layers <= 0 || id.layer < options.max_layers) && id.resolution <= tc.levels - reduce;
     try {
       pos = read_packet(data, pos, tile_stream.first_offset, tc.resolutions[r].precincts[k], id.layer, trees[c][r][k], blocks, ctx);

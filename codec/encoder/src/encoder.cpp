@@ -19,6 +19,7 @@
 #include <optional>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 
 namespace codec {
 namespace {
@@ -191,8 +192,21 @@ std::vector<std::uint8_t> tile_body(const CodedTile& coded, const EncodeParams& 
   return body;
 }
 
+// The codestream as the file `format` asks for: bare, or in a JP2 or JPH file's boxes.
+std::vector<std::uint8_t> in_file(FileFormat format, std::vector<std::uint8_t> codestream, const cs::Siz& siz) {
+  switch (format) {
+    case FileFormat::Jp2: return cs::wrap_jp2(codestream, cs::jp2_header_for(siz));
+    case FileFormat::Jph: return cs::wrap_jph(codestream, cs::jp2_header_for(siz));
+    case FileFormat::Codestream: break;
+  }
+  return codestream;
+}
+
 std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* consumable, const EncodeParams& params,
                                        FileFormat format, EncodeReport* report_out) {
+  // T.814 Annex D: the JPH brand promises an HTJ2K codestream.
+  if (format == FileFormat::Jph && !params.ht)
+    throw std::invalid_argument("a JPH (.jph) file holds an HTJ2K codestream: turn on HT coding (--ht)");
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); };
   EncodeReport report;
@@ -239,8 +253,7 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
     for (std::size_t t = 0; t < tiles.size(); ++t)
       writer.add_tile_part(static_cast<unsigned>(tiles[t].tile.index), 0, 1, tile_body(tiles[t], params, passes[t], layers));
     std::vector<std::uint8_t> codestream = writer.finish();
-    if (format == FileFormat::Jp2) return cs::wrap_jp2(codestream, cs::jp2_header_for(header.siz));
-    return codestream;
+    return in_file(format, std::move(codestream), header.siz);
   };
   // Rate control's trial files: the main header, each tile-part's SOT and SOD, EOC and any JP2
   // boxes do not depend on the selection, so they are measured once with empty tile bodies, and a
@@ -249,7 +262,7 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
     cs::CodestreamWriter writer(header);
     for (const CodedTile& tile : tiles) writer.add_tile_part(static_cast<unsigned>(tile.tile.index), 0, 1, {});
     const std::vector<std::uint8_t> codestream = writer.finish();
-    return format == FileFormat::Jp2 ? cs::wrap_jp2(codestream, cs::jp2_header_for(header.siz)).size() : codestream.size();
+    return in_file(format, codestream, header.siz).size();
   }();
   const FileSizer file_size = [&](const LayerPasses& trial) {
     std::size_t bytes = fixed_bytes;

@@ -42,7 +42,9 @@ struct ImageView {
   std::size_t plane_stride = 0;  // planar: bytes from one plane to the next; 0: height * row stride
 };
 
-enum class Format { Codestream, Jp2 };  // a raw .j2k/.j2c codestream, or a .jp2 file
+// A raw .j2k/.j2c codestream, a .jp2 file, or a .jph file (the JPH file format of T.814 Annex D,
+// for HT codestreams: EncodeOptions::ht must be set).
+enum class Format { Codestream, Jp2, Jph };
 enum class Progression { LRCP, RLCP, RPCL, PCRL, CPRL };
 
 // Code-block mode switches (T.800 Table A.19).

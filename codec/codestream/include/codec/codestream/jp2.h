@@ -29,4 +29,9 @@ Jp2Header jp2_header_for(const Siz& siz);
 // Throws CodestreamError for a header JP2 cannot express.
 std::vector<std::uint8_t> wrap_jp2(const std::vector<std::uint8_t>& codestream, const Jp2Header& header);
 
+// Wraps an HTJ2K codestream in a JPH file (T.814 | ISO/IEC 15444-15 Annex D): the JP2 file format
+// with the brand 'jph ' in the file type box, which also lists 'jph ' as its one compatible brand,
+// and the same signature, header and codestream boxes as wrap_jp2 (ihdr C = 7, an enumerated colr).
+std::vector<std::uint8_t> wrap_jph(const std::vector<std::uint8_t>& codestream, const Jp2Header& header);
+
 }  // namespace codec::cs

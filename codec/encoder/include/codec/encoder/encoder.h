@@ -8,7 +8,8 @@
 
 namespace codec {
 
-enum class FileFormat { Codestream, Jp2 };
+// A raw codestream, a JP2 file (T.800 Annex I) or a JPH file (T.814 Annex D, for HT codestreams).
+enum class FileFormat { Codestream, Jp2, Jph };
 
 // Milliseconds spent in each stage of one encode (the thesis' Table 4.1 split, finer). GPU stages
 // are measured with a glFinish before each clock read, so they are real, not estimates.
