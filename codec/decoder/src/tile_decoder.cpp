@@ -188,6 +188,48 @@ void store(const Plane& plane, const ComponentSize& size, DecodedComponent& out)
     }
 }
 
+// The tile's packets in the order they were sent: COD's progression, or with POC (A.6.6, B.12.2)
+// each progression in turn over its layer, resolution and component ranges, skipping packets an
+// earlier progression already sent. A packet no progression reaches is not in the stream.
+std::vector<t2::PacketId> packet_order(const TileParams& params, const Tile& tile, const std::vector<t2::ComponentGeometry>& geometry) {
+  auto full_order = [&](t2::Order order) {
+    return t2::progression(order, params.cod.layers, tile.rect.x0, tile.rect.y0, tile.rect.x1, tile.rect.y1, geometry);
+  };
+  if (params.poc.empty()) return full_order(params.cod.order);
+
+  // Packet (l, r, c, k) is bit index ((first[c] + precincts before r) + k) * layers + l.
+  std::vector<std::vector<std::size_t>> first(geometry.size());
+  std::size_t total = 0;
+  for (std::size_t c = 0; c < geometry.size(); ++c)
+    for (const t2::ResolutionGeometry& r : geometry[c].resolutions) {
+      first[c].push_back(total);
+      total += static_cast<std::size_t>(r.precincts_wide) * static_cast<std::size_t>(r.precincts_high);
+    }
+  const auto layers = static_cast<std::size_t>(params.cod.layers);
+  // Each progression filters a whole progression of the tile: refuse what would take too long.
+  if (static_cast<double>(params.poc.size()) * static_cast<double>(total) * static_cast<double>(layers) > 5e8)
+    throw DecodeError("tile " + std::to_string(tile.index) + ": " + std::to_string(params.poc.size()) +
+                      " progression changes over " + std::to_string(total * layers) + " packets is more than the decoder walks");
+  std::vector<bool> sent(total * layers, false);
+  std::vector<std::vector<t2::PacketId>> by_order(5);
+  std::vector<t2::PacketId> out;
+  for (const ProgressionChange& change : params.poc) {
+    auto& order = by_order[static_cast<std::size_t>(change.order)];
+    if (order.empty()) order = full_order(change.order);
+    for (const t2::PacketId& id : order) {
+      if (id.layer >= change.layer_end || id.resolution < change.res_start || id.resolution >= change.res_end ||
+          id.component < change.comp_start || id.component >= change.comp_end)
+        continue;
+      const std::size_t bit = (first[static_cast<std::size_t>(id.component)][static_cast<std::size_t>(id.resolution)] +
+                               static_cast<std::size_t>(id.precinct)) * layers + static_cast<std::size_t>(id.layer);
+      if (sent[bit]) continue;
+      sent[bit] = true;
+      out.push_back(id);
+    }
+  }
+  return out;
+}
+
 std::vector<std::uint8_t> joined(const TileStream& tile) {
   std::vector<std::uint8_t> out;
   for (const auto& part : tile.parts) out.insert(out.end(), part.begin(), part.end());
@@ -254,7 +296,7 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     geometry.push_back(geometry_of(tile.components[c], cs.siz.components[c].dx, cs.siz.components[c].dy));
   std::vector<t2::PacketId> packets;
   try {
-    packets = t2::progression(params.cod.order, params.cod.layers, tile.rect.x0, tile.rect.y0, tile.rect.x1, tile.rect.y1, geometry);
+    packets = packet_order(params, tile, geometry);
   } catch (const std::invalid_argument& e) {
     throw DecodeError("tile " + std::to_string(tile_stream.index) + ": " + e.what());
   }
@@ -272,6 +314,7 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     data = joined_parts;
   }
   std::size_t pos = 0;
+  PackedHeaders packed{tile_stream.headers, 0};
   for (const t2::PacketId& id : packets) {
     const auto c = static_cast<std::size_t>(id.component), r = static_cast<std::size_t>(id.resolution),
                k = static_cast<std::size_t>(id.precinct);
@@ -279,6 +322,7 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     PacketContext ctx;
     ctx.sop = params.cod.sop;
     ctx.eph = params.cod.eph;
+    ctx.packed = tile_stream.packed_headers ? &packed : nullptr;
     ctx.style = t1::BlockStyle::from_spcod(params.components[c].coding.block_style);
     ctx.keep = (options.max_layers <= 0 || id.layer < options.max_layers) && id.resolution <= tc.levels - reduce;
     try {
