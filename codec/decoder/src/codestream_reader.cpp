@@ -281,7 +281,8 @@ void read_tile_part(ByteReader& in, std::size_t base, Codestream& cs, std::size_
   const bool first = it == cs.tiles.end();
   if (first) {
     if (tpsot != 0) cs.warnings.push_back("at byte " + std::to_string(sot_at) + ": tile " + std::to_string(isot) + " begins with tile-part " + std::to_string(tpsot));
-    cs.tiles.push_back(TileStream{isot, {}, {}, 0});
+    cs.tiles.emplace_back();
+    cs.tiles.back().index = isot;
     it = cs.tiles.end() - 1;
   } else if (tpsot != static_cast<int>(it->parts.size())) {
     cs.warnings.push_back("at byte " + std::to_string(sot_at) + ": tile-part " + std::to_string(tpsot) + " of tile " +

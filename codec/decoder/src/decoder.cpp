@@ -3,9 +3,11 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <optional>
 
 #include "codestream_reader.h"
 #include "dwt_cpu/cpu_backend.h"
+#include "jp2_colour.h"
 #include "jp2_reader.h"
 #include "tile_decoder.h"
 
@@ -59,16 +61,14 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
   if (options.max_layers < 0) throw DecodeError("the layer count must not be negative");
   std::span<const std::uint8_t> stream = bytes;
   std::size_t base = 0;
-  int colour_space = 0;
+  std::optional<dec::Jp2File> jp2;
   if (dec::looks_like_jp2(bytes)) {
-    const dec::Jp2File jp2 = dec::read_jp2(bytes);
-    stream = jp2.codestream;
-    base = jp2.codestream_offset;
-    colour_space = jp2.colour_space;
+    jp2 = dec::read_jp2(bytes);
+    stream = jp2->codestream;
+    base = jp2->codestream_offset;
   }
   const dec::Codestream cs = dec::read_codestream(stream, base);
   DecodedImage image = allocate_image(cs.siz, options);
-  image.jp2_colour_space = colour_space;
   image.warnings = cs.warnings;
 
   double image_bytes = 0;
@@ -90,6 +90,7 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
   if (missing > 0)
     image.warnings.push_back(std::to_string(missing) + " of " + std::to_string(seen.size()) +
                              " tile(s) missing from the stream; their samples are 0");
+  if (jp2) dec::apply_jp2_channels(*jp2, options.jp2_sycc_to_srgb, image);
   return image;
 }
 

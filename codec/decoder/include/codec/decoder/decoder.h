@@ -29,6 +29,9 @@ struct DecodeOptions {
   // reversible 5/3 always runs on the CPU (exact integers).
   dwt::DwtBackend* irreversible_backend = nullptr;
   int threads = 0;  // CPU DWT threads; 0 = one per hardware thread
+  // JP2 files: turn sYCC (colr EnumCS 18) into sRGB, as a viewer shows it. The palette (pclr /
+  // cmap) and channel definitions (cdef) are always applied: they say what the channels are.
+  bool jp2_sycc_to_srgb = true;
 };
 
 // One decoded component on its own sampling grid: the component's samples inside the image area,
@@ -48,7 +51,9 @@ struct DecodedImage {
   std::vector<DecodedComponent> components;
   // Problems that did not stop the decode (a truncated stream, an unknown marker): one line each.
   std::vector<std::string> warnings;
-  // JP2 files: the colour space the colr box names (16 sRGB, 17 greyscale, 18 sYCC), 0 if none.
+  // JP2 files: the colour space of `components` (16 sRGB, 17 greyscale, 18 sYCC; 16 after an
+  // sYCC conversion), 0 for a codestream or a JP2 file without an enumerated colr box. For a JP2
+  // file, `components` are its channels: palette applied, colours in the colour space's order.
   int jp2_colour_space = 0;
 };
 
