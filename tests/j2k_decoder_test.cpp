@@ -355,6 +355,37 @@ TEST_F(J2kDecoderVsOpenJpeg, ReduceAndLayersMatchOpjDecompress) {
   }
 }
 
+// Windows and selections against opj_decompress -d x0,y0,x1,y1 and -c. (opj_decompress -c on a
+// stream with the component transform outputs untransformed components, so selections are
+// compared on a stream without one; our selection of such a stream is checked against our own
+// whole decode in J2kDecoderWindow.)
+TEST_F(J2kDecoderVsOpenJpeg, RegionsAndComponentsMatchOpjDecompress) {
+  imageio::write_image((dir / "in.ppm").string(), image(Pattern::Mix, 131, 77, 3, 8));
+  struct Case {
+    std::string options;
+    bool select;
+  };
+  const Case cases[] = {{"-t 64,48 -c [32,32],[16,16] -p RPCL -n 4", false}, {"-I -n 4 -r 10", false}, {"-mct 0 -n 3 -b 16,16", true}};
+  const codec::DecodeRegion regions[] = {{37, 11, 91, 60}, {0, 0, 17, 9}, {100, 40, 131, 77}};
+  for (const Case& c : cases) {
+    ASSERT_TRUE(test_support::run_quietly("opj_compress -i '" + (dir / "in.ppm").string() + "' -o '" + (dir / "opj.j2k").string() + "' " + c.options));
+    const int tolerance = c.options.find("-I") != std::string::npos ? 1 : 0;
+    for (const codec::DecodeRegion& r : regions)
+      for (int reduce : {0, 1}) {
+        auto o = options();
+        o.reduce = reduce;
+        o.region = r;
+        std::string opj = "-r " + std::to_string(reduce) + " -d " + std::to_string(r.x0) + "," + std::to_string(r.y0) + "," + std::to_string(r.x1) +
+                          "," + std::to_string(r.y1);
+        if (c.select) {
+          o.components = {2, 0};
+          opj += " -c 2,0";
+        }
+        expect_like_opj(codec::decode_file((dir / "opj.j2k").string(), o), opj_decode(dir, dir / "opj.j2k", opj), tolerance, c.options + " " + opj);
+      }
+  }
+}
+
 // ---- Progression order changes (POC, A.6.6) ----
 
 // Marker segments of a codestream from our encoder, edited in place: the main header's COD
@@ -437,6 +468,104 @@ TEST(J2kDecoderProgressionChanges, PocInMainAndTilePartHeadersGivesTheSentOrder)
   } catch (const codec::DecodeError& e) {
     EXPECT_NE(std::string(e.what()).find("POC"), std::string::npos) << e.what();
   }
+}
+
+// ---- --region and --components: a window or a selection equals decoding everything and cropping ----
+
+// The part of `full` (a whole-image decode) that `region` covers on its grid, reduced as B-12 maps it.
+codec::DecodedComponent cropped(const codec::DecodedComponent& full, const codec::DecodeRegion& region, int reduce) {
+  auto on_grid = [&](std::int64_t v, int d) {  // ceil(ceil(v / d) / 2^reduce)
+    const std::int64_t sampled = (v + d - 1) / d;
+    return static_cast<int>((sampled + (std::int64_t{1} << reduce) - 1) >> reduce);
+  };
+  codec::DecodedComponent out = full;
+  out.x0 = std::max(full.x0, on_grid(region.x0, full.dx));
+  out.y0 = std::max(full.y0, on_grid(region.y0, full.dy));
+  out.width = std::min(full.x0 + full.width, on_grid(region.x1, full.dx)) - out.x0;
+  out.height = std::min(full.y0 + full.height, on_grid(region.y1, full.dy)) - out.y0;
+  out.samples.clear();
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      out.samples.push_back(full.samples[static_cast<std::size_t>(out.y0 - full.y0 + y) * static_cast<std::size_t>(full.width) +
+                                         static_cast<std::size_t>(out.x0 - full.x0 + x)]);
+  return out;
+}
+
+void expect_same_component(const codec::DecodedComponent& got, const codec::DecodedComponent& want, const std::string& what) {
+  EXPECT_EQ(got.x0, want.x0) << what;
+  EXPECT_EQ(got.y0, want.y0) << what;
+  ASSERT_EQ(got.width, want.width) << what;
+  ASSERT_EQ(got.height, want.height) << what;
+  EXPECT_EQ(got.samples, want.samples) << what;
+}
+
+TEST(J2kDecoderWindow, RegionsEqualCropsOfTheWholeDecode) {
+  const auto img = image(Pattern::Mix, 131, 77, 3, 8);
+  std::vector<std::pair<std::string, std::vector<std::uint8_t>>> streams;
+  {
+    auto p = lossless();
+    test_support::apply_order(p, 2, true);  // RPCL, odd image origin, 8x8 code-blocks, precincts
+    p.tile_width = 48;
+    p.tile_height = 40;
+    streams.emplace_back("5/3, tiles, precincts, origin", encode(img, p));
+  }
+  {
+    auto p = lossy();
+    p.codeblock_width = p.codeblock_height = 16;
+    streams.emplace_back("9/7, 16x16 code-blocks", encode(img, p));
+  }
+  const codec::DecodeRegion regions[] = {
+      {0, 0, 1000, 1000}, {37, 11, 91, 60}, {0, 0, 1, 1}, {130, 76, 131, 77}, {47, 39, 49, 41}, {100, 0, 131, 20}, {60, 30, 61, 77},
+  };
+  for (const auto& [name, stream] : streams)
+    for (int reduce : {0, 1, 2}) {
+      auto o = options();
+      o.reduce = reduce;
+      const codec::DecodedImage full = codec::decode(stream, o);
+      for (const codec::DecodeRegion& r : regions) {
+        const std::string what = name + " reduce " + std::to_string(reduce) + " region " + std::to_string(r.x0) + "," + std::to_string(r.y0) +
+                                 "-" + std::to_string(r.x1) + "," + std::to_string(r.y1);
+        auto ro = o;
+        ro.region = r;
+        codec::DecodedImage part;
+        try {
+          part = codec::decode(stream, ro);
+        } catch (const codec::DecodeError& e) {
+          // Only a window that reduces to nothing may be refused.
+          EXPECT_NE(std::string(e.what()).find("region"), std::string::npos) << what << ": " << e.what();
+          continue;
+        }
+        ASSERT_EQ(part.components.size(), full.components.size()) << what;
+        for (std::size_t c = 0; c < full.components.size(); ++c)
+          expect_same_component(part.components[c], cropped(full.components[c], r, reduce), what + " component " + std::to_string(c));
+      }
+    }
+  // A window outside the image is refused, naming the region.
+  auto o = options();
+  o.region = codec::DecodeRegion{500, 500, 600, 600};
+  EXPECT_THROW((void)codec::decode(streams[0].second, o), codec::DecodeError);
+}
+
+TEST(J2kDecoderWindow, ComponentSelectionsEqualTheWholeDecodesComponents) {
+  const auto img = image(Pattern::Mix, 70, 53, 4, 8);
+  for (bool lossless_stream : {true, false}) {
+    const auto stream = encode(img, lossless_stream ? lossless() : lossy());  // components 0..2 through the RCT / ICT
+    const codec::DecodedImage full = codec::decode(stream, options());
+    for (const std::vector<int>& chosen : std::vector<std::vector<int>>{{0}, {2, 0}, {3}, {3, 1}, {1, 2, 3, 0}}) {
+      auto o = options();
+      o.components = chosen;
+      const codec::DecodedImage part = codec::decode(stream, o);
+      ASSERT_EQ(part.components.size(), chosen.size());
+      for (std::size_t k = 0; k < chosen.size(); ++k)
+        expect_same_component(part.components[k], full.components[static_cast<std::size_t>(chosen[k])],
+                              std::string(lossless_stream ? "5/3" : "9/7") + " component " + std::to_string(chosen[k]));
+    }
+  }
+  auto o = options();
+  o.components = {4};
+  EXPECT_THROW((void)codec::decode(encode(img, lossless()), o), codec::DecodeError);
+  o.components = {1, 1};
+  EXPECT_THROW((void)codec::decode(encode(img, lossless()), o), codec::DecodeError);
 }
 
 // ---- The T.803 conformance streams (../shared/conformance) ----

@@ -74,10 +74,22 @@ t2::ComponentGeometry geometry_of(const TileComponent& tc, int dx, int dy) {
   return g;
 }
 
-// Tier-1 and dequantisation of every code-block of a tile-component, into its plane in the Mallat
-// layout of the (reduced) inverse DWT.
+// Whether a code-block of a band at decomposition level `level` can reach `window` (full-resolution
+// tile-component coordinates) through the inverse DWT. A coefficient at band position u feeds,
+// one level up, the samples within 4 of 2u (the 9/7's synthesis filters have 7 and 9 taps, the
+// 5/3's fewer), and so, through the levels, samples within 4 * 2^level of u * 2^level: a margin of
+// 4 band samples, plus one for the rounding of B-15, around the window scaled to the band.
+bool reaches(const Rect& block, int level, const Rect& window) {
+  constexpr std::int64_t kMargin = 5;
+  const Rect scaled{floor_shift(window.x0, level) - kMargin, floor_shift(window.y0, level) - kMargin,
+                    ceil_shift(window.x1, level) + kMargin, ceil_shift(window.y1, level) + kMargin};
+  return !block.intersect(scaled).empty();
+}
+
+// Tier-1 and dequantisation of every code-block of a tile-component that reaches `window`, into
+// its plane in the Mallat layout of the (reduced) inverse DWT.
 void decode_blocks(const TileComponent& tc, const TileComponentParams& params, const ComponentSize& size, int reduce,
-                   const std::vector<BlockState>& states, Plane& plane) {
+                   const Rect& window, const std::vector<BlockState>& states, Plane& plane) {
   const int kept_levels = tc.levels - reduce;
   const auto geometry = dwt::decomposition(plane.width(), plane.height(), dwt::Origin{plane.rect.x0, plane.rect.y0}, kept_levels);
   const t1::BlockStyle style = t1::BlockStyle::from_spcod(params.coding.block_style);
@@ -101,7 +113,7 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
           if (pb.band != static_cast<int>(bi)) continue;
           for (const CodeBlock& cb : pb.blocks) {
             const BlockState& st = states[cb.index];
-            if (st.kept_passes == 0) continue;
+            if (st.kept_passes == 0 || !reaches(cb.rect, band.level, window)) continue;
             const int w = static_cast<int>(cb.rect.width()), h = static_cast<int>(cb.rect.height());
             block.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
             BlockCodewords cw{st.data, st.segments, st.kept_passes, mb - 1 - st.missing_msbs};
@@ -300,6 +312,9 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
   } catch (const std::invalid_argument& e) {
     throw DecodeError("tile " + std::to_string(tile_stream.index) + ": " + e.what());
   }
+  // Components decoded: those output, and those the component transform needs to make them.
+  std::vector<bool> needed = setup.selected;
+  if (params.cod.mct == 1 && (needed[0] || needed[1] || needed[2])) needed[0] = needed[1] = needed[2] = true;
   std::vector<BlockState> blocks(tile.code_blocks);
   std::vector<std::vector<std::vector<std::vector<PrecinctBandTrees>>>> trees(tile.components.size());
   for (std::size_t c = 0; c < tile.components.size(); ++c)
@@ -324,7 +339,7 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     ctx.eph = params.cod.eph;
     ctx.packed = tile_stream.packed_headers ? &packed : nullptr;
     ctx.style = t1::BlockStyle::from_spcod(params.components[c].coding.block_style);
-    ctx.keep = (options.max_layers <= 0 || id.layer < options.max_layers) && id.resolution <= tc.levels - reduce;
+    ctx.keep = (options.max_layers <= 0 || id.layer < options.max_layers) && id.resolution <= tc.levels - reduce && needed[c];
     try {
       pos = read_packet(data, pos, tile_stream.first_offset, tc.resolutions[r].precincts[k], id.layer, trees[c][r][k], blocks, ctx);
     } catch (const PacketTruncated& e) {
@@ -338,14 +353,16 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
   // Tier-1, dequantisation and the inverse DWT per tile-component, then the component transform.
   std::vector<Plane> planes(tile.components.size());
   for (std::size_t c = 0; c < tile.components.size(); ++c) {
+    if (!needed[c]) continue;
     const TileComponent& tc = tile.components[c];
+    const ComponentSize& size = cs.siz.components[c];
     Plane& plane = planes[c];
     plane.rect = tc.resolutions[static_cast<std::size_t>(tc.levels - reduce)].rect;
     plane.reversible = params.components[c].coding.reversible;
     const std::size_t n = static_cast<std::size_t>(plane.rect.width()) * static_cast<std::size_t>(plane.rect.height());
     if (plane.reversible) plane.ints.assign(n, 0);
     else plane.floats.assign(n, 0.0f);
-    decode_blocks(tc, params.components[c], cs.siz.components[c], reduce, blocks, plane);
+    decode_blocks(tc, params.components[c], size, reduce, tile_component_rect(setup.window, size.dx, size.dy), blocks, plane);
     try {
       inverse_dwt(plane, tc.levels - reduce, setup);
     } catch (const dwt::DwtError& e) {
@@ -353,8 +370,9 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     }
   }
   blocks.clear();
-  if (params.cod.mct == 1) inverse_component_transform(planes);
-  for (std::size_t c = 0; c < planes.size(); ++c) store(planes[c], cs.siz.components[c], image.components[c]);
+  if (params.cod.mct == 1 && needed[0]) inverse_component_transform(planes);
+  for (std::size_t c = 0; c < planes.size(); ++c)
+    if (setup.selected[c]) store(planes[c], cs.siz.components[c], image.components[c]);
 }
 
 }  // namespace codec::dec
