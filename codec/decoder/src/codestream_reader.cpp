@@ -429,8 +429,14 @@ TileParams resolve_tile_params(const Codestream& cs, const TileStream& tile) {
   const HeaderMarkers& th = tile.header;
   const HeaderMarkers& mh = cs.main;
   p.cod = th.cod ? *th.cod : *mh.cod;
-  // A.6.6: a tile's POC overrides the main header's.
-  p.poc = th.poc.empty() ? mh.poc : th.poc;
+  // The tile's progressions: the main header's POC records, then its tile-parts' records. T.800
+  // A.1.4 reads as a tile-part POC replacing the main header's, but grk_compress writes a main
+  // POC with the packet order it used plus tile-part POCs that repeat its ranges with order 0,
+  // and OpenJPEG and Grok decode by appending tile-part records to the main header's (the tile's
+  // records then only reach packets not sent yet). We follow them; the two readings differ only
+  // for a tile with POC in both places whose records disagree.
+  p.poc = mh.poc;
+  p.poc.insert(p.poc.end(), th.poc.begin(), th.poc.end());
   for (int c = 0; c < static_cast<int>(cs.siz.components.size()); ++c) {
     TileComponentParams tc;
     if (const auto* coc = find_in(th.coc, c)) tc.coding = *coc;

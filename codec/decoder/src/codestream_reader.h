@@ -113,7 +113,7 @@ struct TileComponentParams {
 };
 struct TileParams {
   Cod cod;  // SOP/EPH, order, layers, MCT from the governing COD
-  std::vector<ProgressionChange> poc;  // the tile's POC, else the main header's; empty: cod.order
+  std::vector<ProgressionChange> poc;  // main header's POC records, then the tile's; empty: cod.order
   std::vector<TileComponentParams> components;
 };
 TileParams resolve_tile_params(const Codestream& cs, const TileStream& tile);
