@@ -855,6 +855,46 @@ TEST(J2kDecoderRobustness, CorruptedStreamsNeverCrash) {
   }
 }
 
+// The progression changes and packed headers of the conformance streams, truncated and with bits
+// flipped in their headers: p0_03 (POC), p1_02 (PPT) and p1_03 (PPM), the larger two decoded at
+// their lowest common resolution (p1_03's fewest levels are 3) so that tier-2, which reads these
+// markers, does most of the work.
+TEST(J2kDecoderRobustness, CorruptedPocAndPackedHeadersNeverCrash) {
+  const fs::path root = test_support::shared_dir() / "conformance" / "streams";
+  REQUIRE_SHARED_FILE(root / "p0_03.j2k");
+  int run = 0;
+  for (const auto& [name, reduce] : {std::pair{"p0_03", 0}, {"p1_02", 5}, {"p1_03", 3}}) {
+    std::ifstream in(root / (std::string(name) + ".j2k"), std::ios::binary);
+    const std::vector<std::uint8_t> stream((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    auto o = options();
+    o.reduce = reduce;
+    ASSERT_TRUE(codec::decode(stream, o).warnings.empty()) << name << " decodes cleanly before it is damaged";
+    auto decode_or_refuse_reduced = [&](const std::vector<std::uint8_t>& bytes) {
+      try {
+        (void)codec::decode(bytes, o);
+      } catch (const codec::DecodeError& e) {
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+      }
+    };
+    // The marker segments live in the first bytes (p1_02's PPT runs to byte 3443, p1_03's PPM from
+    // byte 213 on); flipping there reaches POC, PPM and PPT fields and the packet headers they hold.
+    const std::size_t header_span = std::min<std::size_t>(stream.size(), 4000);
+    for (int trial = 0; trial < 60; ++trial, ++run) {
+      std::vector<std::uint8_t> bytes = stream;
+      for (int f = 0; f < 1 + trial % 3; ++f) {
+        const std::uint64_t r = testimages::splitmix64_at(static_cast<std::uint64_t>(run) + 7777, static_cast<std::uint64_t>(f));
+        bytes[static_cast<std::size_t>(r % header_span)] ^= static_cast<std::uint8_t>(1u << ((r >> 32) % 8));
+      }
+      SCOPED_TRACE(std::string(name) + " trial " + std::to_string(trial));
+      decode_or_refuse_reduced(bytes);
+    }
+    for (std::size_t len = 0; len < header_span; len += 97) {
+      SCOPED_TRACE(std::string(name) + " truncated to " + std::to_string(len));
+      decode_or_refuse_reduced(std::vector<std::uint8_t>(stream.begin(), stream.begin() + static_cast<std::ptrdiff_t>(len)));
+    }
+  }
+}
+
 TEST(J2kDecoderRobustness, HostileSizesAreRefusedBeforeAllocating) {
   // A valid header for a 60000 x 60000 x 3 image: 40 GiB of samples.
   auto stream = encode(image(Pattern::Mix, 16, 16, 3, 8), lossless());
