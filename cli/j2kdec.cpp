@@ -5,7 +5,10 @@
 #include <CLI/CLI.hpp>
 
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
+#include <stdexcept>
+#include <vector>
 #include <memory>
 #include <string>
 
@@ -65,11 +68,40 @@ void write_other(const std::string& path, const codec::DecodedImage& img) {
   imageio::write_image(path, out);
 }
 
+// "0,2,1" -> {0, 2, 1}; "X,Y,W,H" -> the region [X, X+W) x [Y, Y+H). One line on failure.
+std::vector<long long> numbers(const std::string& list, const char* what) {
+  std::vector<long long> out;
+  std::size_t pos = 0;
+  while (pos <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', pos), list.size());
+    const std::string field = list.substr(pos, comma - pos);
+    std::size_t used = 0;
+    long long v = -1;
+    try {
+      v = std::stoll(field, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (field.empty() || used != field.size() || v < 0 || v > (1LL << 32))
+      throw std::runtime_error(std::string(what) + " \"" + list + "\": \"" + field + "\" is not a number in 0..2^32");
+    out.push_back(v);
+    pos = comma + 1;
+  }
+  return out;
+}
+
+codec::DecodeRegion region_of(const std::string& text) {
+  const auto v = numbers(text, "--region");
+  if (v.size() != 4) throw std::runtime_error("--region \"" + text + "\" must be X,Y,W,H");
+  if (v[2] == 0 || v[3] == 0) throw std::runtime_error("--region \"" + text + "\" is empty");
+  return codec::DecodeRegion{v[0], v[1], v[0] + v[2], v[1] + v[3]};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"j2kdec: JPEG 2000 decoder, Part 1 and HTJ2K (Part 15): codestreams, JP2 and JPH files"};
-  std::string input, output, dwt = "cpu";
+  std::string input, output, dwt = "cpu", components, region;
   int reduce = 0, layers = 0, threads = 0;
   double max_memory_mib = 2048;
   bool quiet = false;
@@ -77,6 +109,10 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", output, "output image: .pgx (one file per component), .pgm/.ppm/.pnm, .pfm, or any OpenImageIO format")->required();
   app.add_option("--reduce", reduce, "discard the R finest resolution levels")->check(CLI::Range(0, 32));
   app.add_option("--layers", layers, "decode only the first L quality layers (0: all)")->check(CLI::NonNegativeNumber);
+  app.add_option("--components", components, "decode only these components, written in this order (e.g. 0,2)");
+  app.add_option("--region", region,
+                 "decode only the window X,Y,W,H of the reference grid (full-resolution coordinates, image offset included, "
+                 "as opj_decompress -d X,Y,X+W,Y+H)");
   app.add_option("--dwt", dwt, "inverse 9/7 DWT on cpu or gpu (auto: cpu for now); the 5/3 runs on the CPU")
       ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   app.add_option("--threads", threads, "CPU threads (0: one per hardware thread)")->check(CLI::NonNegativeNumber);
@@ -94,6 +130,9 @@ int main(int argc, char** argv) {
     options.max_layers = layers;
     options.threads = threads;
     options.max_memory = static_cast<std::size_t>(max_memory_mib * 1048576.0);
+    if (!components.empty())
+      for (const long long c : numbers(components, "--components")) options.components.push_back(static_cast<int>(std::min(c, 1LL << 30)));
+    if (!region.empty()) options.region = region_of(region);
     std::unique_ptr<dwt_gpu::GpuBackend> gpu;
     if (dwt == "gpu") {
       gpu = std::make_unique<dwt_gpu::GpuBackend>();

@@ -13,6 +13,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   codec::DecodeOptions options;
   options.threads = 1;
   options.max_memory = std::size_t{64} << 20;
+  // The input's length picks a window and a component selection for some inputs, so that the
+  // paths that skip tiles, code-blocks and components are fuzzed too.
+  if (size % 3 == 1) options.region = codec::DecodeRegion{static_cast<std::int64_t>(size % 7), 2, 37, 29};
+  if (size % 5 == 2) options.components = {0};
   try {
     const codec::DecodedImage image = codec::decode(std::span<const std::uint8_t>(data, size), options);
     for (const auto& c : image.components)

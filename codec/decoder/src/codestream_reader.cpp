@@ -175,6 +175,43 @@ void read_cap(ByteReader body) {
   if (!body.at_end()) body.fail("CAP: " + std::to_string(body.remaining()) + " byte(s) beyond the Ccap fields Pcap announces");
 }
 
+// POC (A.6.6, Table A.32): RSpoc, CSpoc, LYEpoc, REpoc, CEpoc, Ppoc per progression, component
+// fields two bytes wide when Csiz >= 257. Each range is checked so that the packet walk can trust it.
+void read_poc(ByteReader body, const Siz& siz, HeaderMarkers& h) {
+  const bool wide = siz.components.size() >= 257;
+  const std::size_t entry = wide ? 9 : 7;
+  if (body.remaining() == 0 || body.remaining() % entry != 0)
+    body.fail("POC length is not 2 + " + std::to_string(entry) + " x the number of progressions");
+  const int components = static_cast<int>(siz.components.size());
+  while (!body.at_end()) {
+    const std::size_t at = body.file_offset();
+    ProgressionChange p;
+    p.res_start = body.u8("RSpoc");
+    p.comp_start = wide ? body.u16("CSpoc") : body.u8("CSpoc");
+    p.layer_end = body.u16("LYEpoc");
+    p.res_end = body.u8("REpoc");
+    p.comp_end = wide ? body.u16("CEpoc") : body.u8("CEpoc");
+    // Table A.32: CEpoc 0 stands for 256 (resp. 16384 when two bytes wide).
+    if (p.comp_end == 0) p.comp_end = wide ? 16384 : 256;
+    p.comp_end = std::min(p.comp_end, components);
+    const int order = body.u8("Ppoc");
+    if (order > 4) fail_at(at + entry - 1, "POC progression order " + std::to_string(order) + " is not one of 0..4");
+    p.order = static_cast<t2::Order>(order);
+    if (p.res_start >= p.res_end || p.res_end > 33 || p.comp_start >= p.comp_end || p.layer_end == 0)
+      fail_at(at, "POC progression with empty or reversed ranges (RS " + std::to_string(p.res_start) + ".." + std::to_string(p.res_end) +
+                      ", CS " + std::to_string(p.comp_start) + ".." + std::to_string(p.comp_end) + ", LYE " + std::to_string(p.layer_end) + ")");
+    h.poc.push_back(p);
+  }
+}
+
+// PPM / PPT (A.7.4, A.7.5): Zppm/Zppt, then packed header bytes appended to `out` (the segments
+// are taken in the order they appear).
+void read_packed_headers(ByteReader body, const char* name, std::vector<std::uint8_t>& out) {
+  body.u8(name);  // Zppm / Zppt
+  const auto bytes = body.take(body.remaining(), name);
+  out.insert(out.end(), bytes.begin(), bytes.end());
+}
+
 // Markers allowed in both main and tile-part headers. Returns false for markers it does not know.
 bool read_common_marker(std::uint16_t code, ByteReader& in, std::size_t base, const Siz& siz, HeaderMarkers& h,
                         bool first_tile_part, std::vector<std::string>& warnings) {
@@ -224,10 +261,13 @@ bool read_common_marker(std::uint16_t code, ByteReader& in, std::size_t base, co
       segment_body(in, base, "marker segment");
       return true;
     case mk::POC:
-      fail_at(at, "POC (progression order change) is not supported yet");
+      // A.6.6: POC may be in any tile-part header of the tile; the progressions accumulate.
+      read_poc(segment_body(in, base, "POC"), siz, h);
+      return true;
     case mk::PPM:
+      fail_at(at, "PPM in a tile-part header (A.7.4: main header only)");
     case mk::PPT:
-      fail_at(at, std::string(code == mk::PPM ? "PPM" : "PPT") + " (packed packet headers) is not supported yet");
+      fail_at(at, "PPT in the main header (A.7.5: tile-part headers only)");
     case mk::CAP:
       read_cap(segment_body(in, base, "CAP"));
       return true;
@@ -257,7 +297,8 @@ void read_tile_part(ByteReader& in, std::size_t base, Codestream& cs, std::size_
   const bool first = it == cs.tiles.end();
   if (first) {
     if (tpsot != 0) cs.warnings.push_back("at byte " + std::to_string(sot_at) + ": tile " + std::to_string(isot) + " begins with tile-part " + std::to_string(tpsot));
-    cs.tiles.push_back(TileStream{isot, {}, {}, 0});
+    cs.tiles.emplace_back();
+    cs.tiles.back().index = isot;
     it = cs.tiles.end() - 1;
   } else if (tpsot != static_cast<int>(it->parts.size())) {
     cs.warnings.push_back("at byte " + std::to_string(sot_at) + ": tile-part " + std::to_string(tpsot) + " of tile " +
@@ -269,6 +310,12 @@ void read_tile_part(ByteReader& in, std::size_t base, Codestream& cs, std::size_
     const std::size_t at = in.file_offset();
     const std::uint16_t code = in.u16("marker");
     if (code == mk::SOD) break;
+    if (code == mk::PPT) {
+      if (cs.has_ppm) fail_at(at, "PPT in a stream whose main header has PPM (A.7.4)");
+      tile.packed_headers = true;
+      read_packed_headers(segment_body(in, base, "PPT"), "PPT", tile.headers);
+      continue;
+    }
     if (!read_common_marker(code, in, base, cs.siz, tile.header, first, cs.warnings))
       fail_at(at, "expected a marker segment in the tile-part header, found " + hex(code));
   }
@@ -295,6 +342,59 @@ void read_tile_part(ByteReader& in, std::size_t base, Codestream& cs, std::size_
   }
   if (tile.parts.empty()) tile.first_offset = base + data_at;
   tile.parts.push_back(in.take(data_len, "tile-part data"));
+  cs.tile_part_tiles.push_back(isot);
+}
+
+// A.7.4: the PPM bytes are, for each tile-part in stream order, Nppm (4 bytes) and that many
+// bytes of packet headers. Each tile receives its tile-parts' runs, joined.
+void distribute_ppm(Codestream& cs) {
+  ByteReader in(cs.ppm);
+  for (const int tile_index : cs.tile_part_tiles) {
+    auto it = std::find_if(cs.tiles.begin(), cs.tiles.end(), [&](const TileStream& t) { return t.index == tile_index; });
+    it->packed_headers = true;
+    if (in.remaining() < 4) {
+      cs.warnings.push_back("PPM: the packed headers end before tile-part of tile " + std::to_string(tile_index));
+      continue;
+    }
+    const std::uint32_t n = in.u32("Nppm");
+    if (n > in.remaining()) {
+      cs.warnings.push_back("PPM: Nppm " + std::to_string(n) + " for tile " + std::to_string(tile_index) + " runs past the PPM data");
+      const auto rest = in.take(in.remaining(), "Ippm");
+      it->headers.insert(it->headers.end(), rest.begin(), rest.end());
+      continue;
+    }
+    const auto run = in.take(n, "Ippm");
+    it->headers.insert(it->headers.end(), run.begin(), run.end());
+  }
+}
+
+// Tile-parts, from the first SOT (just read) until EOC or the end of the bytes.
+void read_tile_parts(ByteReader& in, std::size_t base, Codestream& cs) {
+  std::size_t sot_at = in.file_offset() - 2;
+  for (;;) {
+    try {
+      read_tile_part(in, base, cs, sot_at);
+    } catch (const DecodeError& e) {
+      // A tile-part header cut off by the end of the stream is a truncation, not a malformed file.
+      if (in.remaining() == 0 || std::string(e.what()).find("truncated") != std::string::npos) {
+        cs.warnings.push_back(std::string("truncated: ") + e.what());
+        return;
+      }
+      throw;
+    }
+    if (in.remaining() < 2) {
+      cs.warnings.push_back("truncated: the stream ends without EOC");
+      return;
+    }
+    sot_at = in.file_offset();
+    const std::uint16_t code = in.u16("marker");
+    if (code == mk::EOC) break;
+    if (code != mk::SOT) {
+      cs.warnings.push_back("at byte " + std::to_string(sot_at) + ": expected SOT or EOC, found " + hex(code) +
+                            "; the rest of the stream is ignored");
+      break;
+    }
+  }
 }
 
 }  // namespace
@@ -316,38 +416,19 @@ Codestream read_codestream(std::span<const std::uint8_t> bytes, std::size_t base
     const std::uint16_t code = in.u16("marker");
     if (code == mk::SOT) break;
     if (code == mk::EOC) return cs;
+    if (code == mk::PPM) {
+      cs.has_ppm = true;
+      read_packed_headers(segment_body(in, base, "PPM"), "PPM", cs.ppm);
+      continue;
+    }
     if (!read_common_marker(code, in, base, cs.siz, cs.main, true, cs.warnings))
       fail_at(at, "expected a marker segment in the main header, found " + hex(code));
   }
   if (!cs.main.cod) fail_at(in.file_offset(), "the main header has no COD marker");
   if (!cs.main.qcd) fail_at(in.file_offset(), "the main header has no QCD marker");
 
-  // Tile-parts, until EOC or the end of the bytes.
-  std::size_t sot_at = in.file_offset() - 2;
-  for (;;) {
-    try {
-      read_tile_part(in, base, cs, sot_at);
-    } catch (const DecodeError& e) {
-      // A tile-part header cut off by the end of the stream is a truncation, not a malformed file.
-      if (in.remaining() == 0 || std::string(e.what()).find("truncated") != std::string::npos) {
-        cs.warnings.push_back(std::string("truncated: ") + e.what());
-        return cs;
-      }
-      throw;
-    }
-    if (in.remaining() < 2) {
-      cs.warnings.push_back("truncated: the stream ends without EOC");
-      return cs;
-    }
-    sot_at = in.file_offset();
-    const std::uint16_t code = in.u16("marker");
-    if (code == mk::EOC) break;
-    if (code != mk::SOT) {
-      cs.warnings.push_back("at byte " + std::to_string(sot_at) + ": expected SOT or EOC, found " + hex(code) +
-                            "; the rest of the stream is ignored");
-      break;
-    }
-  }
+  read_tile_parts(in, base, cs);
+  if (cs.has_ppm) distribute_ppm(cs);
   return cs;
 }
 
@@ -364,6 +445,14 @@ TileParams resolve_tile_params(const Codestream& cs, const TileStream& tile) {
   const HeaderMarkers& th = tile.header;
   const HeaderMarkers& mh = cs.main;
   p.cod = th.cod ? *th.cod : *mh.cod;
+  // The tile's progressions: the main header's POC records, then its tile-parts' records. T.800
+  // A.1.4 reads as a tile-part POC replacing the main header's, but grk_compress writes a main
+  // POC with the packet order it used plus tile-part POCs that repeat its ranges with order 0,
+  // and OpenJPEG and Grok decode by appending tile-part records to the main header's (the tile's
+  // records then only reach packets not sent yet). We follow them; the two readings differ only
+  // for a tile with POC in both places whose records disagree.
+  p.poc = mh.poc;
+  p.poc.insert(p.poc.end(), th.poc.begin(), th.poc.end());
   for (int c = 0; c < static_cast<int>(cs.siz.components.size()); ++c) {
     TileComponentParams tc;
     if (const auto* coc = find_in(th.coc, c)) tc.coding = *coc;

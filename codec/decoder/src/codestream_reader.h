@@ -57,13 +57,23 @@ struct Quantization {  // Sqcd + SPqcd (Tables A.28-A.30)
   std::vector<StepSize> steps;  // one (derived) or one per subband in the order of A.6.4
 };
 
-// The markers of one header, main or tile (a tile's first tile-part).
+// One progression of a POC marker (A.6.6, Table A.32): the packets of layers [0, layer_end),
+// resolutions [res_start, res_end) and components [comp_start, comp_end) not already sent, in
+// `order`.
+struct ProgressionChange {
+  int res_start = 0, comp_start = 0, layer_end = 0, res_end = 0, comp_end = 0;
+  t2::Order order = t2::Order::LRCP;
+};
+
+// The markers of one header, main or tile (COD..RGN from a tile's first tile-part; POC and PPT
+// from any of its tile-parts).
 struct HeaderMarkers {
   std::optional<Cod> cod;
   std::map<int, ComponentCoding> coc;
   std::optional<Quantization> qcd;
   std::map<int, Quantization> qcc;
   std::map<int, int> roi_shift;  // RGN with maximum shift (Annex H), per component
+  std::vector<ProgressionChange> poc;  // in the order the POC segments give them
 };
 
 struct TileStream {
@@ -71,6 +81,10 @@ struct TileStream {
   HeaderMarkers header;                           // from the tile's first tile-part
   std::vector<std::span<const std::uint8_t>> parts;  // packet data of each tile-part, in order
   std::size_t first_offset = 0;                    // file offset of the first part's data
+  // Packed packet headers (PPM's share of this tile, or its PPT segments), tile-parts joined in
+  // order; `packed_headers` false: the headers are in the packet data (B.9).
+  bool packed_headers = false;
+  std::vector<std::uint8_t> headers;
 };
 
 struct Codestream {
@@ -78,6 +92,11 @@ struct Codestream {
   HeaderMarkers main;
   std::vector<TileStream> tiles;  // in order of first appearance
   std::vector<std::string> warnings;
+  // PPM (A.7.4): the Ippm bytes of every PPM segment joined in order, and the tile index of each
+  // tile-part in stream order, which the Nppm runs follow.
+  bool has_ppm = false;
+  std::vector<std::uint8_t> ppm;
+  std::vector<int> tile_part_tiles;
 };
 
 // Parses SOC .. EOC. `base` is the codestream's offset in the file (inside a JP2 file), so that
@@ -94,6 +113,7 @@ struct TileComponentParams {
 };
 struct TileParams {
   Cod cod;  // SOP/EPH, order, layers, MCT from the governing COD
+  std::vector<ProgressionChange> poc;  // main header's POC records, then the tile's; empty: cod.order
   std::vector<TileComponentParams> components;
 };
 TileParams resolve_tile_params(const Codestream& cs, const TileStream& tile);

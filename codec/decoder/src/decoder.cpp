@@ -3,9 +3,11 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <optional>
 
 #include "codestream_reader.h"
 #include "dwt_cpu/cpu_backend.h"
+#include "jp2_colour.h"
 #include "jp2_reader.h"
 #include "tile_decoder.h"
 
@@ -15,41 +17,75 @@ namespace {
 
 std::int64_t reduced(std::int64_t v, int r) { return ceil_shift(v, r); }
 
-// The output image: each component's area on its grid (B-12), reduced, sized before any tile is
-// decoded, and refused if it alone exceeds the memory limit.
-DecodedImage allocate_image(const dec::Siz& siz, const DecodeOptions& options) {
+// The window decoded: the image area, or the region clipped to it (refused when they miss).
+Rect decoded_area(const dec::Siz& siz, const DecodeOptions& options) {
+  const Rect image = siz.grid.image;
+  if (!options.region) return image;
+  const DecodeRegion& r = *options.region;
+  const Rect window = image.intersect(Rect{r.x0, r.y0, r.x1, r.y1});
+  if (r.x0 >= r.x1 || r.y0 >= r.y1 || window.empty())
+    throw DecodeError("the region [" + std::to_string(r.x0) + "," + std::to_string(r.x1) + ") x [" + std::to_string(r.y0) + "," +
+                      std::to_string(r.y1) + ") is empty or outside the image [" + std::to_string(image.x0) + "," + std::to_string(image.x1) +
+                      ") x [" + std::to_string(image.y0) + "," + std::to_string(image.y1) + ")");
+  return window;
+}
+
+// Which codestream components are output: all, or the selection (each once, each present).
+std::vector<bool> selected_components(const dec::Siz& siz, const DecodeOptions& options) {
+  std::vector<bool> selected(siz.components.size(), options.components.empty());
+  for (const int c : options.components) {
+    if (c < 0 || c >= static_cast<int>(siz.components.size()))
+      throw DecodeError("component " + std::to_string(c) + " asked for, but the image has " + std::to_string(siz.components.size()));
+    if (selected[static_cast<std::size_t>(c)]) throw DecodeError("component " + std::to_string(c) + " asked for twice");
+    selected[static_cast<std::size_t>(c)] = true;
+  }
+  return selected;
+}
+
+// The output image, one entry per codestream component: each selected component's part of the
+// decoded window on its grid (B-12), reduced, sized before any tile is decoded, and refused if it
+// alone exceeds the memory limit; unselected components stay empty.
+DecodedImage allocate_image(const dec::Siz& siz, const Rect& window, const std::vector<bool>& selected, const DecodeOptions& options) {
   DecodedImage img;
   const int r = options.reduce;
-  img.x0 = reduced(siz.grid.image.x0, r);
-  img.y0 = reduced(siz.grid.image.y0, r);
-  img.x1 = reduced(siz.grid.image.x1, r);
-  img.y1 = reduced(siz.grid.image.y1, r);
+  img.x0 = reduced(window.x0, r);
+  img.y0 = reduced(window.y0, r);
+  img.x1 = reduced(window.x1, r);
+  img.y1 = reduced(window.y1, r);
   double bytes = 0;
-  for (const dec::ComponentSize& c : siz.components) {
-    const Rect area = tile_component_rect(siz.grid.image, c.dx, c.dy);
+  for (std::size_t c = 0; c < siz.components.size(); ++c) {
+    if (!selected[c]) continue;
+    const Rect area = tile_component_rect(window, siz.components[c].dx, siz.components[c].dy);
     const std::int64_t w = reduced(area.x1, r) - reduced(area.x0, r), h = reduced(area.y1, r) - reduced(area.y0, r);
     bytes += static_cast<double>(w) * static_cast<double>(h) * sizeof(std::int32_t);
   }
   if (bytes > static_cast<double>(options.max_memory))
     throw DecodeError("the image would need " + std::to_string(static_cast<long long>(bytes / 1048576)) +
                       " MiB, over the memory limit of " + std::to_string(options.max_memory >> 20) + " MiB");
-  for (const dec::ComponentSize& c : siz.components) {
-    if (c.precision > 31)
-      throw DecodeError("components of " + std::to_string(c.precision) + " bits are not supported yet (at most 31)");
-    const Rect area = tile_component_rect(siz.grid.image, c.dx, c.dy);
+  for (std::size_t c = 0; c < siz.components.size(); ++c) {
+    const dec::ComponentSize& size = siz.components[c];
+    if (size.precision > 31)
+      throw DecodeError("components of " + std::to_string(size.precision) + " bits are not supported yet (at most 31)");
+    const Rect area = tile_component_rect(window, size.dx, size.dy);
     DecodedComponent out;
     out.x0 = static_cast<int>(reduced(area.x0, r));
     out.y0 = static_cast<int>(reduced(area.y0, r));
-    out.width = static_cast<int>(reduced(area.x1, r) - out.x0);
-    out.height = static_cast<int>(reduced(area.y1, r) - out.y0);
-    out.dx = c.dx;
-    out.dy = c.dy;
-    out.precision = c.precision;
-    out.is_signed = c.is_signed;
-    out.samples.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height), 0);
+    out.dx = size.dx;
+    out.dy = size.dy;
+    out.precision = size.precision;
+    out.is_signed = size.is_signed;
+    if (selected[c]) {
+      out.width = static_cast<int>(reduced(area.x1, r) - out.x0);
+      out.height = static_cast<int>(reduced(area.y1, r) - out.y0);
+      out.samples.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height), 0);
+    }
     img.components.push_back(std::move(out));
   }
   return img;
+}
+
+bool rewrites_channels(const dec::Jp2File& jp2) {
+  return !jp2.channel_sources.empty() || !jp2.channel_definitions.empty() || jp2.colour_space == 18;
 }
 
 }  // namespace
@@ -59,16 +95,16 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
   if (options.max_layers < 0) throw DecodeError("the layer count must not be negative");
   std::span<const std::uint8_t> stream = bytes;
   std::size_t base = 0;
-  int colour_space = 0;
+  std::optional<dec::Jp2File> jp2;
   if (dec::looks_like_jp2(bytes)) {
-    const dec::Jp2File jp2 = dec::read_jp2(bytes);
-    stream = jp2.codestream;
-    base = jp2.codestream_offset;
-    colour_space = jp2.colour_space;
+    jp2 = dec::read_jp2(bytes);
+    stream = jp2->codestream;
+    base = jp2->codestream_offset;
   }
   const dec::Codestream cs = dec::read_codestream(stream, base);
-  DecodedImage image = allocate_image(cs.siz, options);
-  image.jp2_colour_space = colour_space;
+  const Rect window = decoded_area(cs.siz, options);
+  const std::vector<bool> selected = selected_components(cs.siz, options);
+  DecodedImage image = allocate_image(cs.siz, window, selected, options);
   image.warnings = cs.warnings;
 
   double image_bytes = 0;
@@ -79,9 +115,15 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
   setup.reversible_backend = &cpu;
   setup.irreversible_backend = options.irreversible_backend ? options.irreversible_backend : &cpu;
   setup.memory_budget = static_cast<std::size_t>(static_cast<double>(options.max_memory) - image_bytes);
+  setup.window = window;
+  setup.selected = selected;
 
+  // Tiles the window misses are neither decoded nor missed.
   std::vector<bool> seen(static_cast<std::size_t>(cs.siz.grid.tile_count()), false);
+  for (int t = 0; t < cs.siz.grid.tile_count(); ++t)
+    if (cs.siz.grid.tile_rect(t).intersect(window).empty()) seen[static_cast<std::size_t>(t)] = true;
   for (const dec::TileStream& tile : cs.tiles) {
+    if (cs.siz.grid.tile_rect(tile.index).intersect(window).empty()) continue;
     dec::decode_tile(cs, tile, setup, image);
     seen[static_cast<std::size_t>(tile.index)] = true;
   }
@@ -90,6 +132,16 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
   if (missing > 0)
     image.warnings.push_back(std::to_string(missing) + " of " + std::to_string(seen.size()) +
                              " tile(s) missing from the stream; their samples are 0");
+  if (!options.components.empty()) {
+    std::vector<DecodedComponent> chosen;
+    for (const int c : options.components) chosen.push_back(std::move(image.components[static_cast<std::size_t>(c)]));
+    image.components = std::move(chosen);
+    if (jp2 && rewrites_channels(*jp2))
+      image.warnings.push_back("the JP2 palette, channel definitions and colour conversion are not applied to a component selection");
+    if (jp2) image.jp2_colour_space = jp2->colour_space;
+  } else if (jp2) {
+    dec::apply_jp2_channels(*jp2, options.jp2_sycc_to_srgb, image);
+  }
   return image;
 }
 

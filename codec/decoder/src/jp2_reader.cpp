@@ -48,6 +48,102 @@ bool looks_like_jp2(std::span<const std::uint8_t> b) {
   return true;
 }
 
+namespace {
+
+// pclr (I.5.3.4): NE (2), NPC (1), B_i (1 each), then NE rows of NPC values of ceil(B_i / 8) bytes.
+Jp2Palette read_pclr(ByteReader in) {
+  Jp2Palette p;
+  const std::size_t at = in.file_offset();
+  p.entries = in.u16("pclr NE");
+  const int columns = in.u8("pclr NPC");
+  if (p.entries < 1 || p.entries > 1024) fail_at(at, "pclr has " + std::to_string(p.entries) + " entries (1..1024)");
+  if (columns < 1) fail_at(at + 2, "pclr has no columns");
+  for (int c = 0; c < columns; ++c) {
+    const int b = in.u8("pclr B");
+    p.precision.push_back((b & 0x7F) + 1);
+    p.is_signed.push_back((b & 0x80) != 0);
+    if (p.precision.back() > 38) fail_at(in.file_offset() - 1, "pclr column of " + std::to_string(p.precision.back()) + " bits");
+  }
+  p.values.reserve(static_cast<std::size_t>(p.entries) * static_cast<std::size_t>(columns));
+  for (int e = 0; e < p.entries; ++e)
+    for (int c = 0; c < columns; ++c) {
+      const int bits = p.precision[static_cast<std::size_t>(c)];
+      std::uint64_t v = 0;
+      for (int k = 0; k < (bits + 7) / 8; ++k) v = (v << 8) | in.u8("pclr entry");
+      std::int64_t s = static_cast<std::int64_t>(v & ((std::uint64_t{1} << bits) - 1));
+      if (p.is_signed[static_cast<std::size_t>(c)] && (s >> (bits - 1))) s -= std::int64_t{1} << bits;
+      p.values.push_back(s);
+    }
+  return p;
+}
+
+// cmap (I.5.3.5): per channel CMP (2), MTYP (1: 0 direct, 1 palette), PCOL (1).
+std::vector<Jp2ChannelSource> read_cmap(ByteReader in) {
+  if (in.remaining() == 0 || in.remaining() % 4 != 0) in.fail("cmap length is not a multiple of 4");
+  std::vector<Jp2ChannelSource> out;
+  while (!in.at_end()) {
+    const std::size_t at = in.file_offset();
+    Jp2ChannelSource s;
+    s.component = in.u16("cmap CMP");
+    const int type = in.u8("cmap MTYP");
+    const int column = in.u8("cmap PCOL");
+    if (type > 1) fail_at(at + 2, "cmap mapping type " + std::to_string(type) + " is not 0 or 1");
+    s.palette_column = type == 1 ? column : -1;
+    out.push_back(s);
+  }
+  return out;
+}
+
+// cdef (I.5.3.6): N (2), then N of Cn, Typ, Asoc (2 bytes each).
+std::vector<Jp2ChannelDefinition> read_cdef(ByteReader in) {
+  const int n = in.u16("cdef N");
+  if (in.remaining() != 6u * static_cast<std::size_t>(n)) in.fail("cdef length disagrees with its N " + std::to_string(n));
+  std::vector<Jp2ChannelDefinition> out;
+  for (int i = 0; i < n; ++i) {
+    Jp2ChannelDefinition d;
+    d.channel = in.u16("cdef Cn");
+    d.type = in.u16("cdef Typ");
+    d.association = in.u16("cdef Asoc");
+    out.push_back(d);
+  }
+  return out;
+}
+
+void read_jp2_header(ByteReader inner, Jp2File& f) {
+  bool have_colr = false;
+  while (!inner.at_end()) {
+    const Box sub = next_box(inner);
+    ByteReader body(sub.body, sub.body_offset);
+    if (sub.type == box_type("ihdr")) {
+      body.u32("ihdr HEIGHT");
+      body.u32("ihdr WIDTH");
+      f.ihdr_components = body.u16("ihdr NC");
+    } else if (sub.type == box_type("colr") && !have_colr) {
+      // I.5.3.3: only the first colr box is read by a conforming JP2 reader.
+      have_colr = true;
+      const int method = body.u8("METH");
+      body.u8("PREC");
+      body.u8("APPROX");
+      if (method == 1) f.colour_space = static_cast<int>(body.u32("EnumCS"));
+      else if (method == 2) f.icc_profile = true;
+    } else if (sub.type == box_type("pclr")) {
+      f.palette = read_pclr(body);
+    } else if (sub.type == box_type("cmap")) {
+      f.channel_sources = read_cmap(body);
+    } else if (sub.type == box_type("cdef")) {
+      f.channel_definitions = read_cdef(body);
+    }
+  }
+  if (f.palette.entries > 0 && f.channel_sources.empty())
+    fail_at(inner.file_offset(), "JP2 header has a palette (pclr) but no component mapping (cmap)");
+  for (const Jp2ChannelSource& s : f.channel_sources)
+    if (s.palette_column >= 0 && s.palette_column >= f.palette.columns())
+      fail_at(inner.file_offset(), "cmap names palette column " + std::to_string(s.palette_column) + " of " +
+                                       std::to_string(f.palette.columns()));
+}
+
+}  // namespace
+
 Jp2File read_jp2(std::span<const std::uint8_t> bytes) {
   Jp2File f;
   ByteReader in(bytes);
@@ -55,19 +151,7 @@ Jp2File read_jp2(std::span<const std::uint8_t> bytes) {
   while (!in.at_end() && !have_codestream) {
     const Box box = next_box(in);
     if (box.type == box_type("jp2h")) {
-      ByteReader inner(box.body, box.body_offset);
-      while (!inner.at_end()) {
-        const Box sub = next_box(inner);
-        if (sub.type == box_type("colr")) {
-          ByteReader colr(sub.body, sub.body_offset);
-          const int method = colr.u8("METH");
-          colr.u8("PREC");
-          colr.u8("APPROX");
-          if (method == 1 && f.colour_space == 0) f.colour_space = static_cast<int>(colr.u32("EnumCS"));
-        } else if (sub.type == box_type("pclr") || sub.type == box_type("cmap")) {
-          fail_at(sub.body_offset - 8, "JP2 palettes (pclr/cmap boxes) are not supported yet");
-        }
-      }
+      read_jp2_header(ByteReader(box.body, box.body_offset), f);
     } else if (box.type == box_type("jp2c")) {
       f.codestream = box.body;
       f.codestream_offset = box.body_offset;

@@ -156,7 +156,8 @@ std::size_t read_packet(std::span<const std::uint8_t> data, std::size_t pos, std
     std::vector<t2::SegmentPiece> pieces;
   };
   std::vector<Contribution> contributions;
-  HeaderBitReader in(data, pos);
+  const std::span<const std::uint8_t> header_bytes = ctx.packed ? ctx.packed->bytes : data;
+  HeaderBitReader in(header_bytes, ctx.packed ? ctx.packed->pos : pos);
   {
     if (in.bit()) {  // B.10.3: 0 is an empty packet
       for (std::size_t b = 0; b < precinct.bands.size(); ++b) {
@@ -188,11 +189,11 @@ std::size_t read_packet(std::span<const std::uint8_t> data, std::size_t pos, std
       }
     }
   }
-  pos = in.end_position();
-  // A.8.2: EPH follows the header when COD asks for it.
-  if (ctx.eph) {
-    if (u16_at(data, pos) == kEph) pos += 2;
-  }
+  std::size_t header_end = in.end_position();
+  // A.8.2: EPH follows the header when COD asks for it (in the packed headers when they are).
+  if (ctx.eph && u16_at(header_bytes, header_end) == kEph) header_end += 2;
+  if (ctx.packed) ctx.packed->pos = header_end;
+  else pos = header_end;
   // The body: each contribution's bytes in header order.
   for (const Contribution& c : contributions) {
     BlockState& st = blocks[c.block];

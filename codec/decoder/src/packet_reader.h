@@ -60,14 +60,23 @@ struct PrecinctBandTrees {
   TagTreeDecoder inclusion, zero_bitplanes;
 };
 
+// Packet headers carried apart from the packet data (PPM / PPT, A.7.4-5): the tile's header bytes
+// and the read position in them, advanced packet by packet.
+struct PackedHeaders {
+  std::span<const std::uint8_t> bytes;
+  std::size_t pos = 0;
+};
+
 struct PacketContext {
   bool sop = false, eph = false;
+  PackedHeaders* packed = nullptr;  // null: each header precedes its body in the packet data
   t1::BlockStyle style;
   bool ht = false;   // HT code-blocks (T.814): segments are cleanup passes and refinement pairs
   bool keep = true;  // false: parse only (a layer or resolution the caller does not want)
 };
 
 // Reads one packet (T.800 B.9, B.10: optional SOP, header with optional EPH, body) of `precinct`
+// (with packed headers, the header and its EPH come from ctx.packed, SOP and body from `data`)
 // at `layer` from data[pos...], updates the tag trees and block states, and returns the position
 // after it. Throws PacketTruncated when the data ends inside the packet (the blocks then keep only
 // what arrived whole), DecodeError for a malformed header. `file_offset` maps positions to the file.

@@ -126,10 +126,22 @@ void decode_block(const BlockState& st, int mb, int w, int h, BandOrientation or
   }
 }
 
-// Tier-1 and dequantisation of every code-block of a tile-component, into its plane in the Mallat
-// layout of the (reduced) inverse DWT.
+// Whether a code-block of a band at decomposition level `level` can reach `window` (full-resolution
+// tile-component coordinates) through the inverse DWT. A coefficient at band position u feeds,
+// one level up, the samples within 4 of 2u (the 9/7's synthesis filters have 7 and 9 taps, the
+// 5/3's fewer), and so, through the levels, samples within 4 * 2^level of u * 2^level: a margin of
+// 4 band samples, plus one for the rounding of B-15, around the window scaled to the band.
+bool reaches(const Rect& block, int level, const Rect& window) {
+  constexpr std::int64_t kMargin = 5;
+  const Rect scaled{floor_shift(window.x0, level) - kMargin, floor_shift(window.y0, level) - kMargin,
+                    ceil_shift(window.x1, level) + kMargin, ceil_shift(window.y1, level) + kMargin};
+  return !block.intersect(scaled).empty();
+}
+
+// Tier-1 and dequantisation of every code-block of a tile-component that reaches `window`, into
+// its plane in the Mallat layout of the (reduced) inverse DWT.
 void decode_blocks(const TileComponent& tc, const TileComponentParams& params, const ComponentSize& size, int reduce,
-                   const std::vector<BlockState>& states, Plane& plane) {
+                   const Rect& window, const std::vector<BlockState>& states, Plane& plane) {
   const int kept_levels = tc.levels - reduce;
   const auto geometry = dwt::decomposition(plane.width(), plane.height(), dwt::Origin{plane.rect.x0, plane.rect.y0}, kept_levels);
   std::vector<std::int32_t> block;
@@ -152,7 +164,7 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
           if (pb.band != static_cast<int>(bi)) continue;
           for (const CodeBlock& cb : pb.blocks) {
             const BlockState& st = states[cb.index];
-            if (st.kept_passes == 0) continue;
+            if (st.kept_passes == 0 || !reaches(cb.rect, band.level, window)) continue;
             const int w = static_cast<int>(cb.rect.width()), h = static_cast<int>(cb.rect.height());
             block.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
             decode_block(st, mb, w, h, band.orientation, params.coding, block);
@@ -238,6 +250,48 @@ void store(const Plane& plane, const ComponentSize& size, DecodedComponent& out)
     }
 }
 
+// The tile's packets in the order they were sent: COD's progression, or with POC (A.6.6, B.12.2)
+// each progression in turn over its layer, resolution and component ranges, skipping packets an
+// earlier progression already sent. A packet no progression reaches is not in the stream.
+std::vector<t2::PacketId> packet_order(const TileParams& params, const Tile& tile, const std::vector<t2::ComponentGeometry>& geometry) {
+  auto full_order = [&](t2::Order order) {
+    return t2::progression(order, params.cod.layers, tile.rect.x0, tile.rect.y0, tile.rect.x1, tile.rect.y1, geometry);
+  };
+  if (params.poc.empty()) return full_order(params.cod.order);
+
+  // Packet (l, r, c, k) is bit index ((first[c] + precincts before r) + k) * layers + l.
+  std::vector<std::vector<std::size_t>> first(geometry.size());
+  std::size_t total = 0;
+  for (std::size_t c = 0; c < geometry.size(); ++c)
+    for (const t2::ResolutionGeometry& r : geometry[c].resolutions) {
+      first[c].push_back(total);
+      total += static_cast<std::size_t>(r.precincts_wide) * static_cast<std::size_t>(r.precincts_high);
+    }
+  const auto layers = static_cast<std::size_t>(params.cod.layers);
+  // Each progression filters a whole progression of the tile: refuse what would take too long.
+  if (static_cast<double>(params.poc.size()) * static_cast<double>(total) * static_cast<double>(layers) > 5e8)
+    throw DecodeError("tile " + std::to_string(tile.index) + ": " + std::to_string(params.poc.size()) +
+                      " progression changes over " + std::to_string(total * layers) + " packets is more than the decoder walks");
+  std::vector<bool> sent(total * layers, false);
+  std::vector<std::vector<t2::PacketId>> by_order(5);
+  std::vector<t2::PacketId> out;
+  for (const ProgressionChange& change : params.poc) {
+    auto& order = by_order[static_cast<std::size_t>(change.order)];
+    if (order.empty()) order = full_order(change.order);
+    for (const t2::PacketId& id : order) {
+      if (id.layer >= change.layer_end || id.resolution < change.res_start || id.resolution >= change.res_end ||
+          id.component < change.comp_start || id.component >= change.comp_end)
+        continue;
+      const std::size_t bit = (first[static_cast<std::size_t>(id.component)][static_cast<std::size_t>(id.resolution)] +
+                               static_cast<std::size_t>(id.precinct)) * layers + static_cast<std::size_t>(id.layer);
+      if (sent[bit]) continue;
+      sent[bit] = true;
+      out.push_back(id);
+    }
+  }
+  return out;
+}
+
 std::vector<std::uint8_t> joined(const TileStream& tile) {
   std::vector<std::uint8_t> out;
   for (const auto& part : tile.parts) out.insert(out.end(), part.begin(), part.end());
@@ -304,10 +358,13 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     geometry.push_back(geometry_of(tile.components[c], cs.siz.components[c].dx, cs.siz.components[c].dy));
   std::vector<t2::PacketId> packets;
   try {
-    packets = t2::progression(params.cod.order, params.cod.layers, tile.rect.x0, tile.rect.y0, tile.rect.x1, tile.rect.y1, geometry);
+    packets = packet_order(params, tile, geometry);
   } catch (const std::invalid_argument& e) {
     throw DecodeError("tile " + std::to_string(tile_stream.index) + ": " + e.what());
   }
+  // Components decoded: those output, and those the component transform needs to make them.
+  std::vector<bool> needed = setup.selected;
+  if (params.cod.mct == 1 && (needed[0] || needed[1] || needed[2])) needed[0] = needed[1] = needed[2] = true;
   std::vector<BlockState> blocks(tile.code_blocks);
   std::vector<std::vector<std::vector<std::vector<PrecinctBandTrees>>>> trees(tile.components.size());
   for (std::size_t c = 0; c < tile.components.size(); ++c)
@@ -322,6 +379,7 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     data = joined_parts;
   }
   std::size_t pos = 0;
+  PackedHeaders packed{tile_stream.headers, 0};
   for (const t2::PacketId& id : packets) {
     const auto c = static_cast<std::size_t>(id.component), r = static_cast<std::size_t>(id.resolution),
                k = static_cast<std::size_t>(id.precinct);
@@ -329,9 +387,10 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     PacketContext ctx;
     ctx.sop = params.cod.sop;
     ctx.eph = params.cod.eph;
+    ctx.packed = tile_stream.packed_headers ? &packed : nullptr;
     ctx.style = t1::BlockStyle::from_spcod(params.components[c].coding.block_style);
     ctx.ht = is_ht(params.components[c].coding);
-    ctx.keep = (options.max_layers <= 0 || id.layer < options.max_layers) && id.resolution <= tc.levels - reduce;
+    ctx.keep = (options.max_layers <= 0 || id.layer < options.max_layers) && id.resolution <= tc.levels - reduce && needed[c];
     try {
       pos = read_packet(data, pos, tile_stream.first_offset, tc.resolutions[r].precincts[k], id.layer, trees[c][r][k], blocks, ctx);
     } catch (const PacketTruncated& e) {
@@ -345,14 +404,16 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
   // Tier-1, dequantisation and the inverse DWT per tile-component, then the component transform.
   std::vector<Plane> planes(tile.components.size());
   for (std::size_t c = 0; c < tile.components.size(); ++c) {
+    if (!needed[c]) continue;
     const TileComponent& tc = tile.components[c];
+    const ComponentSize& size = cs.siz.components[c];
     Plane& plane = planes[c];
     plane.rect = tc.resolutions[static_cast<std::size_t>(tc.levels - reduce)].rect;
     plane.reversible = params.components[c].coding.reversible;
     const std::size_t n = static_cast<std::size_t>(plane.rect.width()) * static_cast<std::size_t>(plane.rect.height());
     if (plane.reversible) plane.ints.assign(n, 0);
     else plane.floats.assign(n, 0.0f);
-    decode_blocks(tc, params.components[c], cs.siz.components[c], reduce, blocks, plane);
+    decode_blocks(tc, params.components[c], size, reduce, tile_component_rect(setup.window, size.dx, size.dy), blocks, plane);
     try {
       inverse_dwt(plane, tc.levels - reduce, setup);
     } catch (const dwt::DwtError& e) {
@@ -360,8 +421,9 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     }
   }
   blocks.clear();
-  if (params.cod.mct == 1) inverse_component_transform(planes);
-  for (std::size_t c = 0; c < planes.size(); ++c) store(planes[c], cs.siz.components[c], image.components[c]);
+  if (params.cod.mct == 1 && needed[0]) inverse_component_transform(planes);
+  for (std::size_t c = 0; c < planes.size(); ++c)
+    if (setup.selected[c]) store(planes[c], cs.siz.components[c], image.components[c]);
 }
 
 }  // namespace codec::dec

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -20,6 +21,12 @@ class DecodeError : public std::runtime_error {
   explicit DecodeError(const std::string& what) : std::runtime_error(what) {}
 };
 
+// A window of the image on the reference grid (T.800 B.2), half-open: [x0, x1) x [y0, y1), in the
+// full-resolution coordinates SIZ uses (image offset included, as opj_decompress -d takes them).
+struct DecodeRegion {
+  std::int64_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
 struct DecodeOptions {
   int reduce = 0;          // discard this many of the finest resolution levels (opj_decompress -r)
   int max_layers = 0;      // decode only the first max_layers quality layers; 0 = all
@@ -29,6 +36,17 @@ struct DecodeOptions {
   // reversible 5/3 always runs on the CPU (exact integers).
   dwt::DwtBackend* irreversible_backend = nullptr;
   int threads = 0;  // CPU DWT threads; 0 = one per hardware thread
+  // JP2 files: turn sYCC (colr EnumCS 18) into sRGB, as a viewer shows it. The palette (pclr /
+  // cmap) and channel definitions (cdef) are always applied: they say what the channels are.
+  bool jp2_sycc_to_srgb = true;
+  // Decode only these codestream components, output in this order; empty: all. Components the
+  // component transform needs (0..2 when COD's MCT is on) are decoded but not output. A JP2
+  // file's palette, channel definitions and colour conversion are not applied to a selection.
+  std::vector<int> components;
+  // Decode only this window (clipped to the image): tiles outside it are skipped, and code-blocks
+  // whose reach through the inverse DWT misses it are not decoded. Each component then covers
+  // the window on its own (reduced) grid, as B-12 maps the image area.
+  std::optional<DecodeRegion> region;
 };
 
 // One decoded component on its own sampling grid: the component's samples inside the image area,
@@ -48,7 +66,9 @@ struct DecodedImage {
   std::vector<DecodedComponent> components;
   // Problems that did not stop the decode (a truncated stream, an unknown marker): one line each.
   std::vector<std::string> warnings;
-  // JP2 files: the colour space the colr box names (16 sRGB, 17 greyscale, 18 sYCC), 0 if none.
+  // JP2 files: the colour space of `components` (16 sRGB, 17 greyscale, 18 sYCC; 16 after an
+  // sYCC conversion), 0 for a codestream or a JP2 file without an enumerated colr box. For a JP2
+  // file, `components` are its channels: palette applied, colours in the colour space's order.
   int jp2_colour_space = 0;
 };
 
