@@ -57,27 +57,13 @@ int read_pass_count(HeaderBitReader& in) {
 
 int floor_log2(int n) { return std::bit_width(static_cast<unsigned>(n)) - 1; }
 
-// T.814 Annex B: an HT code-block's passes come in HT sets of a cleanup pass, then a SigProp and a
-// MagRef pass; each cleanup pass is a codeword segment of its own, and the refinement passes of a
-// set share one (Part 1's B.10.7.2 then signals each segment's length with Lblock + floor(log2 of
-// its passes in the packet) bits).
-bool ht_segment_ends_after(int pass) { return pass % 3 != 1; }
+t2::BlockCoder coder_of(const PacketContext& ctx) { return ctx.ht ? t2::BlockCoder::Ht : t2::BlockCoder::Ebcot; }
 
-bool segment_ends_after(const PacketContext& ctx, int pass) {
-  return ctx.ht ? ht_segment_ends_after(pass) : t2::segment_ends_after(ctx.style, pass);
-}
+bool segment_ends_after(const PacketContext& ctx, int pass) { return t2::segment_ends_after(ctx.style, pass, coder_of(ctx)); }
 
 // The pieces (one length field each) the passes first_pass .. first_pass + count - 1 form.
 std::vector<t2::SegmentPiece> split_passes(const PacketContext& ctx, int first_pass, int count) {
-  if (!ctx.ht) return t2::split_into_segments(ctx.style, first_pass, count, [](int) { return std::size_t{0}; });
-  std::vector<t2::SegmentPiece> pieces;
-  int start = first_pass;
-  for (int pass = first_pass; pass < first_pass + count; ++pass)
-    if (pass == first_pass + count - 1 || ht_segment_ends_after(pass)) {
-      pieces.push_back(t2::SegmentPiece{pass + 1 - start, 0});
-      start = pass + 1;
-    }
-  return pieces;
+  return t2::split_into_segments(ctx.style, first_pass, count, [](int) { return std::size_t{0}; }, coder_of(ctx));
 }
 
 constexpr std::uint16_t kSop = 0xFF91, kEph = 0xFF92;

@@ -3,7 +3,7 @@
 namespace codec::t2 {
 
 bool segment_ends_after(const t1::BlockStyle& style, int pass, BlockCoder coder) {
-  if (coder == BlockCoder::Ht) return pass == 0 || pass == 2;
+  if (coder == BlockCoder::Ht) return pass % 3 != 1;  // each HT set: cleanup | SigProp + MagRef
   if (style.terminate_each_pass) return true;
   if (!style.bypass) return false;
   // Passes 0..9 are the first cleanup pass and three (significance, refinement, cleanup) triples,

@@ -14,9 +14,10 @@ namespace codec::t2 {
 //    from pass 10 on, each bit-plane's significance + refinement passes are one raw segment and
 //    its cleanup pass one MQ segment, so segments end after passes 9, 11, 12, 14, 15, 17, 18, ...
 //  - otherwise: one segment for the whole block, so no pass ends one early.
-// An HT code-block (BlockCoder::Ht, one HT set) has its own rule (T.814 Annex B): the cleanup
-// pass (pass 0) is the HT cleanup segment, and the SigProp and MagRef passes that follow it (1, 2)
-// the HT refinement segment; the style's EBCOT switches do not apply.
+// An HT code-block (BlockCoder::Ht) has its own rule (T.814 Annex B): its passes come in HT sets
+// of a cleanup pass, then SigProp and MagRef; each cleanup pass (0, 3, ...) is an HT cleanup
+// segment, and the two refinement passes after it (1-2, 4-5, ...) one HT refinement segment; the
+// style's EBCOT switches do not apply.
 enum class BlockCoder { Ebcot, Ht };
 bool segment_ends_after(const t1::BlockStyle& style, int pass, BlockCoder coder = BlockCoder::Ebcot);
 
