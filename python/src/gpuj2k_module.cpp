@@ -9,8 +9,10 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "gpuj2k/decoder.h"
 #include "gpuj2k/encoder.h"
 
 namespace py = pybind11;
@@ -104,10 +106,86 @@ py::bytes encode_file(const std::string& path, bool lossless, const py::object& 
   return to_bytes(out);
 }
 
+gpuj2k::DecodeOptions decode_options(int reduce, int layers, const std::optional<std::vector<int>>& components,
+                                     const std::optional<std::vector<std::int64_t>>& region, int threads,
+                                     const std::string& dwt) {
+  gpuj2k::DecodeOptions o;
+  o.reduce = reduce;
+  o.layers = layers;
+  if (components) o.components = *components;
+  if (region) {
+    if (region->size() != 4) throw gpuj2k::Error("region must be (x, y, width, height)");
+    o.region = gpuj2k::Region{(*region)[0], (*region)[1], (*region)[2], (*region)[3]};
+  }
+  o.threads = threads;
+  if (dwt == "gpu") o.dwt = gpuj2k::DwtDevice::Gpu;
+  else if (dwt != "cpu" && dwt != "auto") throw gpuj2k::Error("dwt must be \"auto\", \"cpu\" or \"gpu\", got \"" + dwt + "\"");
+  return o;
+}
+
+// A decoded image as one array: (H, W) for one component, (H, W, C) for several, all of one size;
+// uint8 up to 8 unsigned bits, uint16 up to 16, int16 for signed up to 16, int32 otherwise.
+py::array to_array(gpuj2k::DecodedImage&& image) {
+  if (image.components.empty()) throw gpuj2k::Error("the image has no components");
+  const gpuj2k::DecodedComponent& first = image.components.front();
+  bool any_signed = false, all_unsigned_8 = true, all_unsigned_16 = true, all_signed_16 = true;
+  for (std::size_t c = 0; c < image.components.size(); ++c) {
+    const gpuj2k::DecodedComponent& comp = image.components[c];
+    if (comp.width != first.width || comp.height != first.height)
+      throw gpuj2k::Error("component " + std::to_string(c) + " is " + std::to_string(comp.width) + "x" +
+                          std::to_string(comp.height) + ", component 0 " + std::to_string(first.width) + "x" +
+                          std::to_string(first.height) + " (subsampled): decode them one by one with components=[i]");
+    any_signed |= comp.is_signed;
+    all_unsigned_8 &= !comp.is_signed && comp.precision <= 8;
+    all_unsigned_16 &= !comp.is_signed && comp.precision <= 16;
+    all_signed_16 &= comp.is_signed ? comp.precision <= 16 : comp.precision <= 15;
+  }
+  const auto h = static_cast<py::ssize_t>(first.height), w = static_cast<py::ssize_t>(first.width);
+  const auto nc = static_cast<py::ssize_t>(image.components.size());
+  std::vector<py::ssize_t> shape = nc == 1 ? std::vector<py::ssize_t>{h, w} : std::vector<py::ssize_t>{h, w, nc};
+  auto fill = [&](auto tag) {
+    using T = decltype(tag);
+    py::array_t<T> out(shape);
+    T* dst = out.mutable_data();
+    for (py::ssize_t c = 0; c < nc; ++c) {
+      const std::vector<std::int32_t>& s = image.components[static_cast<std::size_t>(c)].samples;
+      for (std::size_t i = 0; i < s.size(); ++i) dst[static_cast<py::ssize_t>(i) * nc + c] = static_cast<T>(s[i]);
+    }
+    return py::array(out);
+  };
+  if (all_unsigned_8) return fill(std::uint8_t{});
+  if (all_unsigned_16) return fill(std::uint16_t{});
+  if (any_signed && all_signed_16) return fill(std::int16_t{});
+  return fill(std::int32_t{});
+}
+
+py::array decode(const py::bytes& data, int reduce, int layers, const std::optional<std::vector<int>>& components,
+                 const std::optional<std::vector<std::int64_t>>& region, int threads, const std::string& dwt) {
+  const gpuj2k::DecodeOptions options = decode_options(reduce, layers, components, region, threads, dwt);
+  const std::string_view bytes = data;
+  gpuj2k::DecodedImage image;
+  {
+    py::gil_scoped_release release;
+    image = gpuj2k::decode(bytes.data(), bytes.size(), options);
+  }
+  return to_array(std::move(image));
+}
+
+py::array decode_file(const std::string& path, int reduce, int layers, const std::optional<std::vector<int>>& components,
+                      const std::optional<std::vector<std::int64_t>>& region, int threads, const std::string& dwt) {
+  const gpuj2k::DecodeOptions options = decode_options(reduce, layers, components, region, threads, dwt);
+  gpuj2k::DecodedImage image;
+  {
+    py::gil_scoped_release release;
+    image = gpuj2k::decode_file(path, options);
+  }
+  return to_array(std::move(image));
+}
+
 }  // namespace
 
 PYBIND11_MODULE(gpuj2k, m) {
-  m.doc() = "JPEG 2000 encoding (ITU-T T.800 Part 1) with gpuj2k";
+  m.doc() = "JPEG 2000 encoding and decoding (ITU-T T.800 Part 1, T.814 HTJ2K) with gpuj2k";
   static py::exception<gpuj2k::Error> error(m, "Error", PyExc_ValueError);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
@@ -132,5 +210,14 @@ PYBIND11_MODULE(gpuj2k, m) {
         py::arg("rate") = py::none(), py::arg("psnr") = py::none(), py::arg("size") = py::none(), py::arg("levels") = 5,
         py::arg("format") = "j2k", py::arg("threads") = 0, py::arg("dwt") = "auto", py::arg("engine") = py::none(),
         "Encodes an image file (PNM, PNG, TIFF, ...) and returns the bytes.");
+  m.def("decode", &decode, py::arg("data"), py::kw_only(), py::arg("reduce") = 0, py::arg("layers") = 0,
+        py::arg("components") = py::none(), py::arg("region") = py::none(), py::arg("threads") = 0,
+        py::arg("dwt") = "cpu",
+        "Decodes a codestream, JP2 or JPH file given as bytes into a (H, W) or (H, W, C) array (uint8, uint16, int16 "
+        "or int32 by the samples' precision). reduce: finest levels dropped; layers: 0 for all; components: indices "
+        "in output order; region: (x, y, width, height) on the full-resolution grid.");
+  m.def("decode_file", &decode_file, py::arg("path"), py::kw_only(), py::arg("reduce") = 0, py::arg("layers") = 0,
+        py::arg("components") = py::none(), py::arg("region") = py::none(), py::arg("threads") = 0,
+        py::arg("dwt") = "cpu", "Decodes a file (.j2k, .j2c, .jp2, .jph); as decode.");
   m.attr("__version__") = gpuj2k::version();
 }

@@ -154,6 +154,47 @@ class BadInput(unittest.TestCase):
                 self.assertIsInstance(caught.exception, ValueError)
 
 
+class DecodeArrays(unittest.TestCase):
+    def test_lossless_round_trips_through_our_decoder(self):
+        for dtype, bits, channels in ((np.uint8, 8, 3), (np.uint16, 12, 1), (np.int16, 16, 3)):
+            with self.subTest(dtype=dtype, bits=bits, channels=channels):
+                image = pattern(37, 53, channels, dtype, bits)
+                if dtype == np.int16:
+                    image = (image.astype(np.int32) - 20000).astype(np.int16)
+                data = gpuj2k.encode(image, lossless=True, bits=bits if dtype != np.int16 else 0)
+                decoded = gpuj2k.decode(data)
+                self.assertEqual(decoded.dtype, image.dtype)
+                np.testing.assert_array_equal(decoded, image)
+
+    def test_decodes_openjpeg_streams_as_openjpeg_does(self):
+        image = pattern(40, 48, 3, np.uint8, 8)
+        with tempfile.TemporaryDirectory() as d:
+            src = os.path.join(d, "in.ppm")
+            with open(src, "wb") as f:
+                f.write(b"P6\n48 40\n255\n" + image.tobytes())
+            dst = os.path.join(d, "x.j2k")
+            subprocess.run(["opj_compress", "-i", src, "-o", dst, "-r", "10"], check=True, capture_output=True)
+            ours = gpuj2k.decode_file(dst).astype(np.int64)
+            with open(dst, "rb") as f:
+                theirs = decode(f.read())
+        self.assertLessEqual(int(np.abs(ours - theirs).max()), 1)
+
+    def test_windows_selections_and_reductions(self):
+        image = pattern(64, 80, 3, np.uint8, 8)
+        data = gpuj2k.encode(image, lossless=True)
+        np.testing.assert_array_equal(gpuj2k.decode(data, region=(10, 5, 30, 20), components=[2, 0]),
+                                      image[5:25, 10:40][:, :, [2, 0]])
+        self.assertEqual(gpuj2k.decode(data, reduce=2).shape, (16, 20, 3))
+
+    def test_bad_streams_raise_the_library_error(self):
+        for data in (b"hello", gpuj2k.encode(pattern(8, 8, 1, np.uint8, 8), lossless=True)[:30]):
+            with self.assertRaises(gpuj2k.Error):
+                gpuj2k.decode(data)
+        with self.assertRaises(gpuj2k.Error) as caught:
+            gpuj2k.decode(b"x" * 10, reduce=99)
+        self.assertIn("reduce 99 is outside 0..32", str(caught.exception))
+
+
 class Threads(unittest.TestCase):
     def test_gil_is_released_while_encoding(self):
         image = pattern(1024, 1024, 3, np.uint8, 8)

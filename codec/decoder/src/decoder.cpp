@@ -45,7 +45,9 @@ std::vector<bool> selected_components(const dec::Siz& siz, const DecodeOptions& 
 // The output image, one entry per codestream component: each selected component's part of the
 // decoded window on its grid (B-12), reduced, sized before any tile is decoded, and refused if it
 // alone exceeds the memory limit; unselected components stay empty.
-DecodedImage allocate_image(const dec::Siz& siz, const Rect& window, const std::vector<bool>& selected, const DecodeOptions& options) {
+// Without `with_samples` the components get their geometry only (read_header).
+DecodedImage allocate_image(const dec::Siz& siz, const Rect& window, const std::vector<bool>& selected, const DecodeOptions& options,
+                            bool with_samples = true) {
   DecodedImage img;
   const int r = options.reduce;
   img.x0 = reduced(window.x0, r);
@@ -77,7 +79,7 @@ DecodedImage allocate_image(const dec::Siz& siz, const Rect& window, const std::
     if (selected[c]) {
       out.width = static_cast<int>(reduced(area.x1, r) - out.x0);
       out.height = static_cast<int>(reduced(area.y1, r) - out.y0);
-      out.samples.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height), 0);
+      if (with_samples) out.samples.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height), 0);
     }
     img.components.push_back(std::move(out));
   }
@@ -88,20 +90,50 @@ bool rewrites_channels(const dec::Jp2File& jp2) {
   return !jp2.channel_sources.empty() || !jp2.channel_definitions.empty() || jp2.colour_space == 18;
 }
 
-}  // namespace
+// The file's boxes (JP2, JPH) if it has them, and its codestream's headers, options checked.
+struct OpenedStream {
+  std::optional<dec::Jp2File> jp2;
+  dec::Codestream cs;
+};
 
-DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& options) {
+OpenedStream open_stream(std::span<const std::uint8_t> bytes, const DecodeOptions& options) {
   if (options.reduce < 0 || options.reduce > 32) throw DecodeError("reduce must be in 0..32");
   if (options.max_layers < 0) throw DecodeError("the layer count must not be negative");
+  OpenedStream out;
   std::span<const std::uint8_t> stream = bytes;
   std::size_t base = 0;
-  std::optional<dec::Jp2File> jp2;
   if (dec::looks_like_jp2(bytes)) {
-    jp2 = dec::read_jp2(bytes);
-    stream = jp2->codestream;
-    base = jp2->codestream_offset;
+    out.jp2 = dec::read_jp2(bytes);
+    stream = out.jp2->codestream;
+    base = out.jp2->codestream_offset;
   }
-  const dec::Codestream cs = dec::read_codestream(stream, base);
+  out.cs = dec::read_codestream(stream, base);
+  return out;
+}
+
+// The selected components in the order asked for.
+void select_in_order(DecodedImage& image, const DecodeOptions& options) {
+  std::vector<DecodedComponent> chosen;
+  for (const int c : options.components) chosen.push_back(std::move(image.components[static_cast<std::size_t>(c)]));
+  image.components = std::move(chosen);
+}
+
+}  // namespace
+
+DecodedImage read_header(std::span<const std::uint8_t> bytes, const DecodeOptions& options) {
+  const OpenedStream opened = open_stream(bytes, options);
+  const Rect window = decoded_area(opened.cs.siz, options);
+  DecodedImage image = allocate_image(opened.cs.siz, window, selected_components(opened.cs.siz, options), options, false);
+  if (!options.components.empty()) select_in_order(image, options);
+  if (opened.jp2) image.jp2_colour_space = opened.jp2->colour_space;
+  image.warnings = opened.cs.warnings;
+  return image;
+}
+
+DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& options) {
+  const OpenedStream opened = open_stream(bytes, options);
+  const std::optional<dec::Jp2File>& jp2 = opened.jp2;
+  const dec::Codestream& cs = opened.cs;
   const Rect window = decoded_area(cs.siz, options);
   const std::vector<bool> selected = selected_components(cs.siz, options);
   DecodedImage image = allocate_image(cs.siz, window, selected, options);
@@ -133,9 +165,7 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
     image.warnings.push_back(std::to_string(missing) + " of " + std::to_string(seen.size()) +
                              " tile(s) missing from the stream; their samples are 0");
   if (!options.components.empty()) {
-    std::vector<DecodedComponent> chosen;
-    for (const int c : options.components) chosen.push_back(std::move(image.components[static_cast<std::size_t>(c)]));
-    image.components = std::move(chosen);
+    select_in_order(image, options);
     if (jp2 && rewrites_channels(*jp2))
       image.warnings.push_back("the JP2 palette, channel definitions and colour conversion are not applied to a component selection");
     if (jp2) image.jp2_colour_space = jp2->colour_space;

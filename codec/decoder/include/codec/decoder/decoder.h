@@ -77,4 +77,9 @@ struct DecodedImage {
 DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& options = {});
 DecodedImage decode_file(const std::string& path, const DecodeOptions& options = {});
 
+// What decode would give, from the headers alone: the image area and each output component's
+// geometry (no samples) after reduce, region and selection. A JP2 file's palette, channel
+// definitions and colour conversion are not applied (its components are the codestream's).
+DecodedImage read_header(std::span<const std::uint8_t> bytes, const DecodeOptions& options = {});
+
 }  // namespace codec
