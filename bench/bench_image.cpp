@@ -28,8 +28,7 @@
 namespace {
 namespace fs = std::filesystem;
 
-constexpr const char* kUsage =
-    "usage: bench_image mosaic --size N --kodak DIR -o OUT | bench_image convert IN -o OUT";
+constexpr const char* kUsage = "usage: bench_image mosaic --size N --kodak DIR -o OUT | bench_image convert IN -o OUT";
 
 int usage_error(const std::string& message) {
   std::fprintf(stderr, "bench_image: %s (%s)\n", message.c_str(), kUsage);
@@ -51,7 +50,8 @@ int main(int argc, char** argv) {
       if (arg == "--size") {
         char* end = nullptr;
         const long v = std::strtol(value.c_str(), &end, 10);
-        if (value.empty() || *end != '\0' || v < 1 || v > 65535) return usage_error("--size takes 1..65535, got \"" + value + "\"");
+        if (value.empty() || *end != '\0' || v < 1 || v > 65535)
+          return usage_error("--size takes 1..65535, got \"" + value + "\"");
         size = static_cast<int>(v);
       } else if (arg == "--kodak") {
         kodak = value;

@@ -80,8 +80,10 @@ BenchPlane make_plane(int size, const std::string& kodak_dir) {
   int used = 0;
   const imageio::Image rgb = kodak_mosaic(size, kodak_dir, used);
   for (std::size_t i = 0; i < plane.samples.size(); ++i)
-    plane.samples[i] = std::round(0.299f * rgb.pixels[3 * i] + 0.587f * rgb.pixels[3 * i + 1] + 0.114f * rgb.pixels[3 * i + 2]);
-  plane.source = used == 1 ? "crop of a Kodak photograph (luma)" : "mosaic of " + std::to_string(used) + " Kodak photograph tiles (luma)";
+    plane.samples[i] =
+        std::round(0.299f * rgb.pixels[3 * i] + 0.587f * rgb.pixels[3 * i + 1] + 0.114f * rgb.pixels[3 * i + 2]);
+  plane.source = used == 1 ? "crop of a Kodak photograph (luma)"
+                           : "mosaic of " + std::to_string(used) + " Kodak photograph tiles (luma)";
   return plane;
 }
 

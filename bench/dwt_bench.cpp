@@ -73,9 +73,12 @@ int main(int argc, char** argv) {
     std::printf("CPU: %s on %s (%u hardware threads)\n", cpu.name().c_str(), cpu_model().c_str(),
                 std::thread::hardware_concurrency());
     std::printf("GPU: %s\n", renderer.c_str());
-    if (gpu) std::printf("GPU one-time costs: context creation %.1f ms, shader compilation %.1f ms\n", context_ms, compile_ms);
+    if (gpu)
+      std::printf("GPU one-time costs: context creation %.1f ms, shader compilation %.1f ms\n", context_ms, compile_ms);
     std::printf("Median of %d runs. GPU total = upload + compute + download of one transform.\n\n", reps);
-    std::printf("| size | content | CPU fwd ms | CPU inv ms | CPU fwd MS/s | GPU upload ms | GPU fwd compute ms | GPU inv compute ms | GPU download ms | GPU fwd total ms | GPU fwd MS/s | CPU/GPU fwd total |\n");
+    std::printf(
+        "| size | content | CPU fwd ms | CPU inv ms | CPU fwd MS/s | GPU upload ms | GPU fwd compute ms | GPU inv "
+        "compute ms | GPU download ms | GPU fwd total ms | GPU fwd MS/s | CPU/GPU fwd total |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
 
     std::vector<Row> rows;
@@ -119,10 +122,11 @@ int main(int argc, char** argv) {
       }
       const double msamples = double(size) * size / 1e6;
       const double gpu_total = r.gpu_upload + r.gpu_fwd + r.gpu_download;
-      std::printf("| %d² | %s | %.2f | %.2f | %.1f |", size, r.source.c_str(), r.cpu_fwd, r.cpu_inv, msamples / (r.cpu_fwd / 1e3));
+      std::printf("| %d² | %s | %.2f | %.2f | %.1f |", size, r.source.c_str(), r.cpu_fwd, r.cpu_inv,
+                  msamples / (r.cpu_fwd / 1e3));
       if (r.gpu)
-        std::printf(" %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.2f |\n", r.gpu_upload, r.gpu_fwd, r.gpu_inv, r.gpu_download,
-                    gpu_total, msamples / (gpu_total / 1e3), r.cpu_fwd / gpu_total);
+        std::printf(" %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.2f |\n", r.gpu_upload, r.gpu_fwd, r.gpu_inv,
+                    r.gpu_download, gpu_total, msamples / (gpu_total / 1e3), r.cpu_fwd / gpu_total);
       else
         std::printf(" - | - | - | - | - | - | - |\n");
       std::fflush(stdout);
@@ -130,10 +134,12 @@ int main(int argc, char** argv) {
     }
     if (!csv.empty()) {
       std::ofstream out(csv);
-      out << "size,cpu_threads,renderer,cpu_fwd_ms,cpu_inv_ms,gpu_context_ms,gpu_compile_ms,gpu_upload_ms,gpu_fwd_ms,gpu_inv_ms,gpu_download_ms\n";
+      out << "size,cpu_threads,renderer,cpu_fwd_ms,cpu_inv_ms,gpu_context_ms,gpu_compile_ms,gpu_upload_ms,gpu_fwd_ms,"
+             "gpu_inv_ms,gpu_download_ms\n";
       for (const Row& r : rows)
-        out << r.size << "," << cpu.threads() << ",\"" << renderer << "\"," << r.cpu_fwd << "," << r.cpu_inv << "," << context_ms << ","
-            << compile_ms << "," << r.gpu_upload << "," << r.gpu_fwd << "," << r.gpu_inv << "," << r.gpu_download << "\n";
+        out << r.size << "," << cpu.threads() << ",\"" << renderer << "\"," << r.cpu_fwd << "," << r.cpu_inv << ","
+            << context_ms << "," << compile_ms << "," << r.gpu_upload << "," << r.gpu_fwd << "," << r.gpu_inv << ","
+            << r.gpu_download << "\n";
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dwt_bench: %s\n", e.what());

@@ -69,7 +69,8 @@ Character replicate(const Character& c, std::size_t copies) {
     for (std::size_t k = 0; k < copies; ++k) {
       r.mesh.positions.insert(r.mesh.positions.end(), c.mesh.positions.begin() + first,
                               c.mesh.positions.begin() + first + count);
-      r.mesh.normals.insert(r.mesh.normals.end(), c.mesh.normals.begin() + first, c.mesh.normals.begin() + first + count);
+      r.mesh.normals.insert(r.mesh.normals.end(), c.mesh.normals.begin() + first,
+                            c.mesh.normals.begin() + first + count);
       r.joint_indices.insert(r.joint_indices.end(), c.joint_indices.begin() + first * slots,
                              c.joint_indices.begin() + (first + count) * slots);
       r.joint_weights.insert(r.joint_weights.end(), c.joint_weights.begin() + first * slots,
@@ -138,10 +139,11 @@ void run(const char* label, const Character& c, const std::vector<glm::mat4>& ma
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   const double s = median(seconds);
-  std::printf("%-10s %9zu vertices (%zu head), %d influences, %d/%zu face targets active, %2u thread%s: "
-              "%8.3f ms/frame  %7.1f Mvertices/s  (median of %d)\n",
-              label, c.vertex_count(), c.head_count, c.influences, active, c.targets.size(), threads,
-              threads == 1 ? " " : "s", s * 1e3, c.vertex_count() / s * 1e-6, repetitions);
+  std::printf(
+      "%-10s %9zu vertices (%zu head), %d influences, %d/%zu face targets active, %2u thread%s: "
+      "%8.3f ms/frame  %7.1f Mvertices/s  (median of %d)\n",
+      label, c.vertex_count(), c.head_count, c.influences, active, c.targets.size(), threads, threads == 1 ? " " : "s",
+      s * 1e3, c.vertex_count() / s * 1e-6, repetitions);
 }
 
 // Table 3.9: frames per second of the character drawn with each effect, deformed on the GPU
@@ -192,8 +194,8 @@ void table_3_9(glc::Context& context, const Character& c, const std::vector<glm:
           seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         }
         const double s = median(seconds);
-        std::printf("%4dx%-4d %-14s %s deformation: %7.2f ms/frame %7.1f fps\n", w, h, effects,
-                    on_gpu ? "GPU" : "CPU", s * 1e3, 1.0 / s);
+        std::printf("%4dx%-4d %-14s %s deformation: %7.2f ms/frame %7.1f fps\n", w, h, effects, on_gpu ? "GPU" : "CPU",
+                    s * 1e3, 1.0 / s);
       }
     }
 }
@@ -222,10 +224,9 @@ void million_on_gpu(glc::Context& context, const Character& c, const std::vector
 int main(int argc, char** argv) {
   try {
     const char* root = std::getenv("GPUJ2K_SOURCE_DIR");
-    const std::filesystem::path bvh_path =
-        argc > 1 ? std::filesystem::path(argv[1])
-                 : std::filesystem::path(root ? root : GPUJ2K_SOURCE_DIR_DEFAULT) / ".." / "shared" / "assets" / "bvh" /
-                       "cmu_131_01.bvh";
+    const std::filesystem::path bvh_path = argc > 1 ? std::filesystem::path(argv[1])
+                                                    : std::filesystem::path(root ? root : GPUJ2K_SOURCE_DIR_DEFAULT) /
+                                                          ".." / "shared" / "assets" / "bvh" / "cmu_131_01.bvh";
     const performer::Bvh bvh = performer::read_bvh(bvh_path);
     const performer::Skeleton& sk = bvh.skeleton;
 
@@ -233,9 +234,8 @@ int main(int argc, char** argv) {
     performer::HeadParams head_params;
     head_params.rings = 49;
     head_params.segments = 76;
-    const performer::FaceModel face =
-        performer::build_procedural_head(performer::load_viseme_set(performer::default_viseme_dir() / "visemes.tsv"),
-                                         head_params);
+    const performer::FaceModel face = performer::build_procedural_head(
+        performer::load_viseme_set(performer::default_viseme_dir() / "visemes.tsv"), head_params);
     performer::CharacterParams params;
     params.body.grid_cells = 113;
     const Character thesis = performer::build_character(sk, face, params);
@@ -267,7 +267,8 @@ int main(int argc, char** argv) {
     million_on_gpu(*context, million, matrices);
     std::printf("Table 3.9: frames per second, (a) character, every effect, GPU or CPU (%u threads) deformation\n", hw);
     table_3_9(*context, thesis, matrices,
-              std::filesystem::path(root ? root : GPUJ2K_SOURCE_DIR_DEFAULT) / ".." / "shared" / "assets" / "cubemap", hw);
+              std::filesystem::path(root ? root : GPUJ2K_SOURCE_DIR_DEFAULT) / ".." / "shared" / "assets" / "cubemap",
+              hw);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "performer_bench: %s\n", e.what());
     return 1;

@@ -61,8 +61,10 @@ int main(int argc, char** argv) {
     }
   }
   const std::string kodak = bench::find_kodak_dir();
-  std::printf("# edit = forward 9/7 DWT (5 levels) + band operation (Y:1:*=1.8, Y:2:HH=0) + inverse, one plane;\n"
-              "# an RGB or YCbCr edit is three planes. Median of %d runs after one warm-up.\n", reps);
+  std::printf(
+      "# edit = forward 9/7 DWT (5 levels) + band operation (Y:1:*=1.8, Y:2:HH=0) + inverse, one plane;\n"
+      "# an RGB or YCbCr edit is three planes. Median of %d runs after one warm-up.\n",
+      reps);
   std::printf("%-8s %-6s %12s %10s  %s\n", "size", "backend", "ms/edit", "edits/s", "device");
   try {
     for (const std::string& backend : backends) {
@@ -73,8 +75,8 @@ int main(int argc, char** argv) {
         device = "renderer " + device;
         if (glc::is_software_renderer(device)) device += " [software rasteriser on the CPU, not a GPU]";
       }
-      device += " on " + cpu_model() + " (" + std::to_string(std::thread::hardware_concurrency()) +
-                " hardware threads)";
+      device +=
+          " on " + cpu_model() + " (" + std::to_string(std::thread::hardware_concurrency()) + " hardware threads)";
       for (const int size : sizes) {
         const bench::BenchPlane source = bench::make_plane(size, kodak);
         dwt::DwtParams params;

@@ -17,13 +17,15 @@ constexpr int kUsageExitCode = 2;
 // Both subcommands take the same options and bind them to the same RawOptions; only the one that
 // was given writes to it. --bits concerns integer output images, which only inverse produces.
 void add_transform_options(CLI::App& command, RawOptions& raw, bool inverse) {
-  command.add_option("-i,--input", raw.input,
-                     inverse ? "Coefficient plane (.pfm, one channel)"
-                             : "Greyscale image (PNG, PGM, TIFF, ... or PFM); samples keep their integer values")
+  command
+      .add_option("-i,--input", raw.input,
+                  inverse ? "Coefficient plane (.pfm, one channel)"
+                          : "Greyscale image (PNG, PGM, TIFF, ... or PFM); samples keep their integer values")
       ->required();
-  command.add_option("-o,--output", raw.output,
-                     inverse ? "Reconstructed image: .pfm for float samples, else an integer image (see --bits)"
-                             : "Coefficients in the Mallat layout (.pfm)")
+  command
+      .add_option("-o,--output", raw.output,
+                  inverse ? "Reconstructed image: .pfm for float samples, else an integer image (see --bits)"
+                          : "Coefficients in the Mallat layout (.pfm)")
       ->required();
   command.add_option("--kernel", raw.kernel, "Wavelet: " + std::string(dwt::kernel_names()))->capture_default_str();
   command.add_option("--levels", raw.levels, "Decomposition levels")->capture_default_str();
@@ -35,8 +37,9 @@ void add_transform_options(CLI::App& command, RawOptions& raw, bool inverse) {
   if (inverse) {
     command.add_option("--bits", raw.bits, "8|16: sample size of an integer output image")->capture_default_str();
   }
-  command.add_option("--gl", raw.gl, "GL platform for --backend gpu: auto|egl-device|egl-surfaceless|osmesa "
-                                     "(default: $GPUJ2K_GL, else auto)");
+  command.add_option("--gl", raw.gl,
+                     "GL platform for --backend gpu: auto|egl-device|egl-surfaceless|osmesa "
+                     "(default: $GPUJ2K_GL, else auto)");
   command.add_flag("-q,--quiet", raw.quiet, "Print nothing but errors");
 }
 

@@ -22,9 +22,7 @@ std::string number(double v, const char* format) {
   return buf;
 }
 
-std::string json_number(double v, const char* format) {
-  return std::isinf(v) ? "\"inf\"" : number(v, format);
-}
+std::string json_number(double v, const char* format) { return std::isinf(v) ? "\"inf\"" : number(v, format); }
 
 std::string json_list(const std::vector<double>& values, const char* format) {
   std::string out = "[";
@@ -35,9 +33,10 @@ std::string json_list(const std::vector<double>& values, const char* format) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"imgpsnr: PSNR of TEST against REFERENCE, per channel and over all channels.\n"
-               "Peak 2^bits - 1, bits from the reference image unless --bits is given (float images: peak 1).\n"
-               "Identical images print inf. With --json, one JSON object on stdout (inf as the string \"inf\")."};
+  CLI::App app{
+      "imgpsnr: PSNR of TEST against REFERENCE, per channel and over all channels.\n"
+      "Peak 2^bits - 1, bits from the reference image unless --bits is given (float images: peak 1).\n"
+      "Identical images print inf. With --json, one JSON object on stdout (inf as the string \"inf\")."};
   std::string reference_path, test_path;
   int bits = 0;
   bool json = false;
@@ -67,11 +66,12 @@ int main(int argc, char** argv) {
     const cli::PsnrResult r = cli::psnr_with_peak(reference, test, peak);
 
     if (json) {
-      std::printf("{\"width\": %d, \"height\": %d, \"channels\": %d, \"bits\": %d, \"peak\": %s, "
-                  "\"channel_db\": %s, \"channel_mse\": %s, \"all_db\": %s, \"all_mse\": %s}\n",
-                  reference.width, reference.height, reference.channels, used_bits, number(peak, "%.17g").c_str(),
-                  json_list(r.channel_db, "%.6f").c_str(), json_list(r.channel_mse, "%.9g").c_str(),
-                  json_number(r.all_db, "%.6f").c_str(), json_number(r.all_mse, "%.9g").c_str());
+      std::printf(
+          "{\"width\": %d, \"height\": %d, \"channels\": %d, \"bits\": %d, \"peak\": %s, "
+          "\"channel_db\": %s, \"channel_mse\": %s, \"all_db\": %s, \"all_mse\": %s}\n",
+          reference.width, reference.height, reference.channels, used_bits, number(peak, "%.17g").c_str(),
+          json_list(r.channel_db, "%.6f").c_str(), json_list(r.channel_mse, "%.9g").c_str(),
+          json_number(r.all_db, "%.6f").c_str(), json_number(r.all_mse, "%.9g").c_str());
       return 0;
     }
     const std::string peak_text =

@@ -60,10 +60,12 @@ void write_other(const std::string& path, const codec::DecodedImage& img) {
   out.channels = channels;
   out.bits_per_sample = c0.precision;
   out.is_signed = c0.is_signed;
-  out.pixels.resize(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) * static_cast<std::size_t>(channels));
+  out.pixels.resize(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) *
+                    static_cast<std::size_t>(channels));
   for (int c = 0; c < channels; ++c) {
     const auto& s = img.components[static_cast<std::size_t>(c)].samples;
-    for (std::size_t i = 0; i < s.size(); ++i) out.pixels[i * static_cast<std::size_t>(channels) + static_cast<std::size_t>(c)] = static_cast<float>(s[i]);
+    for (std::size_t i = 0; i < s.size(); ++i)
+      out.pixels[i * static_cast<std::size_t>(channels) + static_cast<std::size_t>(c)] = static_cast<float>(s[i]);
   }
   imageio::write_image(path, out);
 }
@@ -106,17 +108,21 @@ int main(int argc, char** argv) {
   double max_memory_mib = 2048;
   bool quiet = false;
   app.add_option("-i,--input", input, "codestream (.j2k, .j2c, .jpc), JP2 or JPH file")->required();
-  app.add_option("-o,--output", output, "output image: .pgx (one file per component), .pgm/.ppm/.pnm, .pfm, or any OpenImageIO format")->required();
+  app.add_option("-o,--output", output,
+                 "output image: .pgx (one file per component), .pgm/.ppm/.pnm, .pfm, or any OpenImageIO format")
+      ->required();
   app.add_option("--reduce", reduce, "discard the R finest resolution levels")->check(CLI::Range(0, 32));
   app.add_option("--layers", layers, "decode only the first L quality layers (0: all)")->check(CLI::NonNegativeNumber);
   app.add_option("--components", components, "decode only these components, written in this order (e.g. 0,2)");
-  app.add_option("--region", region,
-                 "decode only the window X,Y,W,H of the reference grid (full-resolution coordinates, image offset included, "
-                 "as opj_decompress -d X,Y,X+W,Y+H)");
+  app.add_option(
+      "--region", region,
+      "decode only the window X,Y,W,H of the reference grid (full-resolution coordinates, image offset included, "
+      "as opj_decompress -d X,Y,X+W,Y+H)");
   app.add_option("--dwt", dwt, "inverse 9/7 DWT on cpu or gpu (auto: cpu for now); the 5/3 runs on the CPU")
       ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   app.add_option("--threads", threads, "CPU threads (0: one per hardware thread)")->check(CLI::NonNegativeNumber);
-  app.add_option("--max-memory", max_memory_mib, "refuse streams that need more than this many MiB")->check(CLI::PositiveNumber);
+  app.add_option("--max-memory", max_memory_mib, "refuse streams that need more than this many MiB")
+      ->check(CLI::PositiveNumber);
   app.add_flag("-q,--quiet", quiet, "no warnings");
   try {
     app.parse(argc, argv);
@@ -131,7 +137,8 @@ int main(int argc, char** argv) {
     options.threads = threads;
     options.max_memory = static_cast<std::size_t>(max_memory_mib * 1048576.0);
     if (!components.empty())
-      for (const long long c : numbers(components, "--components")) options.components.push_back(static_cast<int>(std::min(c, 1LL << 30)));
+      for (const long long c : numbers(components, "--components"))
+        options.components.push_back(static_cast<int>(std::min(c, 1LL << 30)));
     if (!region.empty()) options.region = region_of(region);
     std::unique_ptr<dwt_gpu::GpuBackend> gpu;
     if (dwt == "gpu") {
@@ -140,10 +147,13 @@ int main(int argc, char** argv) {
     }
     const codec::DecodedImage image = codec::decode_file(input, options);
     if (!quiet)
-      for (const std::string& w : image.warnings) std::fprintf(stderr, "j2kdec: %s: warning: %s\n", input.c_str(), base::one_line(w).c_str());
+      for (const std::string& w : image.warnings)
+        std::fprintf(stderr, "j2kdec: %s: warning: %s\n", input.c_str(), base::one_line(w).c_str());
     try {
-      if (ext == ".pgx") write_pgx(output, image);
-      else write_other(output, image);
+      if (ext == ".pgx")
+        write_pgx(output, image);
+      else
+        write_other(output, image);
     } catch (const imageio::IoError& e) {
       std::fprintf(stderr, "j2kdec: %s\n", base::one_line(e.what()).c_str());
       return 1;

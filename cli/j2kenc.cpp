@@ -40,13 +40,21 @@ gpuj2k::CodeBlockModes parse_modes(const std::string& list) {
   while (start <= list.size() && !list.empty()) {
     const std::size_t comma = list.find(',', start);
     const std::string m = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    if (m == "bypass") s.bypass = true;
-    else if (m == "reset") s.reset = true;
-    else if (m == "termall" || m == "restart") s.terminate_each_pass = true;
-    else if (m == "vcausal" || m == "causal") s.vertically_causal = true;
-    else if (m == "pterm" || m == "erterm") s.predictable_termination = true;
-    else if (m == "segsym" || m == "segmark") s.segmentation_symbols = true;
-    else throw std::invalid_argument("unknown code-block mode '" + m + "' (expected bypass, reset, termall, vcausal, pterm, segsym)");
+    if (m == "bypass")
+      s.bypass = true;
+    else if (m == "reset")
+      s.reset = true;
+    else if (m == "termall" || m == "restart")
+      s.terminate_each_pass = true;
+    else if (m == "vcausal" || m == "causal")
+      s.vertically_causal = true;
+    else if (m == "pterm" || m == "erterm")
+      s.predictable_termination = true;
+    else if (m == "segsym" || m == "segmark")
+      s.segmentation_symbols = true;
+    else
+      throw std::invalid_argument("unknown code-block mode '" + m +
+                                  "' (expected bypass, reset, termall, vcausal, pterm, segsym)");
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
@@ -97,21 +105,31 @@ JasperOptions parse_jasper(const std::vector<std::string>& items) {
       if (v.size() != 1 || v[0] != std::floor(v[0])) throw std::invalid_argument("-O " + key + " takes one integer");
       return static_cast<int>(v[0]);
     };
-    if (key == "rate") rate = parse_numbers(value, "-O rate").at(0);
-    else if (key == "ilyrrates") intermediate = parse_numbers(value, "-O ilyrrates");
-    else if (key == "numrlvls") j.levels = integer() - 1;
+    if (key == "rate")
+      rate = parse_numbers(value, "-O rate").at(0);
+    else if (key == "ilyrrates")
+      intermediate = parse_numbers(value, "-O ilyrrates");
+    else if (key == "numrlvls")
+      j.levels = integer() - 1;
     else if (key == "mode") {
       if (value != "int" && value != "real") throw std::invalid_argument("-O mode takes int or real");
       j.lossless = value == "int";
-    } else if (key == "tilewidth") j.tile_width = integer();
-    else if (key == "tileheight") j.tile_height = integer();
-    else if (key == "cblkwidth") j.cblk_width = integer();
-    else if (key == "cblkheight") j.cblk_height = integer();
+    } else if (key == "tilewidth")
+      j.tile_width = integer();
+    else if (key == "tileheight")
+      j.tile_height = integer();
+    else if (key == "cblkwidth")
+      j.cblk_width = integer();
+    else if (key == "cblkheight")
+      j.cblk_height = integer();
     else if (key == "prg") {
       std::string upper = value;
       for (auto& ch : upper) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
       j.order = upper;
-    } else throw std::invalid_argument("unknown -O option '" + key + "' (rate, numrlvls, mode, tilewidth, tileheight, cblkwidth, cblkheight, prg, ilyrrates)");
+    } else
+      throw std::invalid_argument(
+          "unknown -O option '" + key +
+          "' (rate, numrlvls, mode, tilewidth, tileheight, cblkwidth, cblkheight, prg, ilyrrates)");
   }
   if (!intermediate.empty() && !rate) throw std::invalid_argument("-O ilyrrates needs -O rate for the last layer");
   j.rates = intermediate;
@@ -150,11 +168,18 @@ class ProgressBar {
 
 // The stage report of --timing: one line per stage, or one JSON object, on stderr.
 void print_timing(const std::string& mode, const gpuj2k::EncodeReport& r, double output_ms, double measured_ms) {
-  const std::pair<const char*, double> stages[] = {
-      {"input read", r.read_ms},        {"setup", r.setup_ms},                   {"GL context creation", r.gl_context_ms}, {"shader compilation", r.shader_compile_ms},
-      {"level shift + MCT", r.level_shift_ms}, {"upload", r.upload_ms},           {"DWT compute", r.dwt_ms},
-      {"download", r.download_ms},      {"quantization + tier-1", r.tier1_ms},
-      {"rate control", r.rate_control_ms}, {"tier-2", r.tier2_ms},             {"output", output_ms}};
+  const std::pair<const char*, double> stages[] = {{"input read", r.read_ms},
+                                                   {"setup", r.setup_ms},
+                                                   {"GL context creation", r.gl_context_ms},
+                                                   {"shader compilation", r.shader_compile_ms},
+                                                   {"level shift + MCT", r.level_shift_ms},
+                                                   {"upload", r.upload_ms},
+                                                   {"DWT compute", r.dwt_ms},
+                                                   {"download", r.download_ms},
+                                                   {"quantization + tier-1", r.tier1_ms},
+                                                   {"rate control", r.rate_control_ms},
+                                                   {"tier-2", r.tier2_ms},
+                                                   {"output", output_ms}};
   double sum = 0;
   for (const auto& stage : stages) sum += stage.second;
   if (mode == "json") {
@@ -165,28 +190,31 @@ void print_timing(const std::string& mode, const gpuj2k::EncodeReport& r, double
     json += "\", \"threads\": " + std::to_string(r.threads) + ", \"stages_ms\": {";
     for (std::size_t i = 0; i < std::size(stages); ++i)
       json += (i ? ", \"" : "\"") + std::string(stages[i].first) + "\": " + std::to_string(stages[i].second);
-    json += "}, \"recoded_blocks\": " + std::to_string(r.recoded_blocks) + ", \"sum_ms\": " + std::to_string(sum) + ", \"total_ms\": " + std::to_string(measured_ms) + "}";
+    json += "}, \"recoded_blocks\": " + std::to_string(r.recoded_blocks) + ", \"sum_ms\": " + std::to_string(sum) +
+            ", \"total_ms\": " + std::to_string(measured_ms) + "}";
     std::fprintf(stderr, "%s\n", json.c_str());
     return;
   }
-  std::fprintf(stderr, "j2kenc: timing in ms, DWT on %s (%s), %d threads\n", r.dwt_backend.c_str(), r.dwt_reason.c_str(),
-               r.threads);
+  std::fprintf(stderr, "j2kenc: timing in ms, DWT on %s (%s), %d threads\n", r.dwt_backend.c_str(),
+               r.dwt_reason.c_str(), r.threads);
   for (const auto& [name, ms] : stages) std::fprintf(stderr, "  %-22s %10.2f\n", name, ms);
   std::fprintf(stderr, "  %-22s %10.2f\n  %-22s %10.2f\n", "sum of stages", sum, "total (measured)", measured_ms);
   if (r.recoded_blocks > 0)
-    std::fprintf(stderr, "  (pass skipping: %zu blocks stopped or skipped too soon were coded again)\n", r.recoded_blocks);
+    std::fprintf(stderr, "  (pass skipping: %zu blocks stopped or skipped too soon were coded again)\n",
+                 r.recoded_blocks);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"j2kenc: JPEG 2000 encoder. Lossy 9/7 (on the GPU when one is there) unless --lossless.\n\n"
-               "Examples:\n"
-               "  j2kenc -i photo.png -o photo.jp2 --rate 0.75          # 0.75 bits per pixel over all components\n"
-               "  j2kenc -i photo.png -o photo.j2k --ratio 40,20,10     # three quality layers, OpenJPEG-style ratios\n"
-               "  j2kenc -i photo.png -o photo.j2k --psnr 32,38 --dwt gpu\n"
-               "  j2kenc -i photo.png -o photo.jp2 -O rate=0.05 -O numrlvls=6   # JasPer-style options\n"
-               "  j2kenc -i scan.pgm -o scan.j2k --lossless --tile 512x512 --order RPCL --precincts 128x128,64x64\n"};
+  CLI::App app{
+      "j2kenc: JPEG 2000 encoder. Lossy 9/7 (on the GPU when one is there) unless --lossless.\n\n"
+      "Examples:\n"
+      "  j2kenc -i photo.png -o photo.jp2 --rate 0.75          # 0.75 bits per pixel over all components\n"
+      "  j2kenc -i photo.png -o photo.j2k --ratio 40,20,10     # three quality layers, OpenJPEG-style ratios\n"
+      "  j2kenc -i photo.png -o photo.j2k --psnr 32,38 --dwt gpu\n"
+      "  j2kenc -i photo.png -o photo.jp2 -O rate=0.05 -O numrlvls=6   # JasPer-style options\n"
+      "  j2kenc -i scan.pgm -o scan.j2k --lossless --tile 512x512 --order RPCL --precincts 128x128,64x64\n"};
   std::string input, output, tile, tile_origin, origin, codeblock = "64x64", precincts, order = "LRCP", modes, comment;
   std::string rate, ratio, psnr, dwt = "auto";
   std::vector<std::string> jasper;
@@ -194,14 +222,16 @@ int main(int argc, char** argv) {
   bool lossless = false, sop = false, eph = false, quiet = false;
   int levels = 5, threads = 0, guard_bits = -1;
   app.add_option("-i,--input", input, "input image (PNG, PNM, TIFF, BMP, JPEG, ...)")->required();
-  app.add_option("-o,--output", output, "output: .j2k/.j2c/.jpc codestream, .jp2 file, or .jph file (HTJ2K, with --ht)")->required();
+  app.add_option("-o,--output", output, "output: .j2k/.j2c/.jpc codestream, .jp2 file, or .jph file (HTJ2K, with --ht)")
+      ->required();
   app.add_flag("--lossless", lossless, "reversible 5/3 wavelet and RCT, every bit kept");
   app.add_option("--levels", levels, "decomposition levels (default 5)");
   app.add_option("--tile", tile, "tile size WxH (default: one tile)");
   app.add_option("--tile-origin", tile_origin, "tile grid origin X,Y on the reference grid (XTOsiz,YTOsiz)");
   app.add_option("--origin", origin, "image origin X,Y on the reference grid (XOsiz,YOsiz)");
   app.add_option("--codeblock", codeblock, "code-block size WxH, powers of two 4..1024, W*H <= 4096 (default 64x64)");
-  app.add_option("--precincts", precincts, "precinct sizes WxH,... finest resolution first; the last is halved for coarser ones");
+  app.add_option("--precincts", precincts,
+                 "precinct sizes WxH,... finest resolution first; the last is halved for coarser ones");
   app.add_option("--order", order, "progression order: LRCP, RLCP, RPCL, PCRL, CPRL (default LRCP)");
   bool ht = false;
   app.add_flag("--ht", ht, "HTJ2K: code every code-block with the high-throughput block coder of Part 15 (T.814)");
@@ -209,21 +239,28 @@ int main(int argc, char** argv) {
   app.add_flag("--eph", eph, "EPH marker after every packet header");
   app.add_option("--modes", modes, "code-block mode switches: bypass,reset,termall,vcausal,pterm,segsym");
   app.add_option("--rate", rate, "lossy: bits per pixel over all components, one per quality layer (BPP[,BPP...])");
-  app.add_option("--ratio", ratio, "lossy: compression ratios as opj_compress -r, one per layer (R[,R...], decreasing)");
+  app.add_option("--ratio", ratio,
+                 "lossy: compression ratios as opj_compress -r, one per layer (R[,R...], decreasing)");
   app.add_option("--psnr", psnr, "lossy: PSNR targets in dB, one per layer (DB[,DB...])");
   app.add_option("--size", size, "lossy: whole-file size in bytes");
-  app.add_option("--dwt", dwt, "where the 9/7 DWT runs: cpu, gpu or auto (default auto: a hardware GPU where it is faster for the image size, never a software renderer)");
+  app.add_option("--dwt", dwt,
+                 "where the 9/7 DWT runs: cpu, gpu or auto (default auto: a hardware GPU where it is faster for the "
+                 "image size, never a software renderer)");
   app.add_option("--base-step", base_step, "lossy: quantisation step relative to the sample range (default 1/2048)");
-  app.add_option("-O", jasper, "JasPer-style option key=value: rate, numrlvls, mode=int|real, tilewidth, tileheight, cblkwidth, cblkheight, prg, ilyrrates");
+  app.add_option("-O", jasper,
+                 "JasPer-style option key=value: rate, numrlvls, mode=int|real, tilewidth, tileheight, cblkwidth, "
+                 "cblkheight, prg, ilyrrates");
   app.add_option("--guard-bits", guard_bits, "guard bits (default 2 lossless, 1 lossy)");
   app.add_option("--comment", comment, "COM marker text (default: the encoder's name)");
   app.add_option("--threads", threads, "worker threads (default: all hardware threads)");
   bool every_pass = false;
   app.add_flag("--code-every-pass", every_pass,
-               "with a byte or PSNR target, code every pass of every block instead of stopping far below the predicted threshold");
+               "with a byte or PSNR target, code every pass of every block instead of stopping far below the predicted "
+               "threshold");
   app.add_flag("-q,--quiet", quiet, "no summary line");
   std::string timing;
-  app.add_flag("--timing{text}", timing, "print the time of each stage after the encode; --timing=json for JSON on stderr");
+  app.add_flag("--timing{text}", timing,
+               "print the time of each stage after the encode; --timing=json for JSON on stderr");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -236,26 +273,35 @@ int main(int argc, char** argv) {
   try {
     const std::string ext = cli::lower_extension(output);
     gpuj2k::Format format;
-    if (ext == ".jp2") format = gpuj2k::Format::Jp2;
-    else if (ext == ".jph") format = gpuj2k::Format::Jph;
-    else if (ext == ".j2k" || ext == ".j2c" || ext == ".jpc") format = gpuj2k::Format::Codestream;
-    else throw std::invalid_argument(output + ": unknown output type (use .jp2, .jph, .j2k, .j2c or .jpc)");
+    if (ext == ".jp2")
+      format = gpuj2k::Format::Jp2;
+    else if (ext == ".jph")
+      format = gpuj2k::Format::Jph;
+    else if (ext == ".j2k" || ext == ".j2c" || ext == ".jpc")
+      format = gpuj2k::Format::Codestream;
+    else
+      throw std::invalid_argument(output + ": unknown output type (use .jp2, .jph, .j2k, .j2c or .jpc)");
     const JasperOptions jo = parse_jasper(jasper);
     if (jo.lossless) lossless = lossless || *jo.lossless;
     if (jo.levels) levels = *jo.levels;
     if (jo.order) order = *jo.order;
     const int targets_given = !rate.empty() + !ratio.empty() + !psnr.empty() + (size > 0) + !jo.rates.empty();
     if (targets_given > 1) throw std::invalid_argument("give one of --rate, --ratio, --psnr, --size and -O rate");
-    if (lossless && targets_given) throw std::invalid_argument("rate and quality targets need lossy coding (drop --lossless)");
+    if (lossless && targets_given)
+      throw std::invalid_argument("rate and quality targets need lossy coding (drop --lossless)");
 
     gpuj2k::EncodeOptions options;
     options.format = format;
     options.lossless = lossless;
     options.base_step = base_step;
-    if (dwt == "cpu") options.dwt = gpuj2k::DwtDevice::Cpu;
-    else if (dwt == "gpu") options.dwt = gpuj2k::DwtDevice::Gpu;
-    else if (dwt == "auto") options.dwt = gpuj2k::DwtDevice::Auto;
-    else throw std::invalid_argument("--dwt takes cpu, gpu or auto, got \"" + dwt + "\"");
+    if (dwt == "cpu")
+      options.dwt = gpuj2k::DwtDevice::Cpu;
+    else if (dwt == "gpu")
+      options.dwt = gpuj2k::DwtDevice::Gpu;
+    else if (dwt == "auto")
+      options.dwt = gpuj2k::DwtDevice::Auto;
+    else
+      throw std::invalid_argument("--dwt takes cpu, gpu or auto, got \"" + dwt + "\"");
     options.levels = levels;
     options.threads = threads;
     options.code_every_pass = every_pass;
@@ -266,9 +312,12 @@ int main(int argc, char** argv) {
     options.progression = parse_order(order);
     if (!modes.empty()) options.modes = parse_modes(modes);
     if (!comment.empty()) options.comment = comment;
-    if (!tile.empty()) std::tie(options.tile_width, options.tile_height) = cli::parse_pair(tile, 'x', "--tile", kMaxCoordinate);
-    if (!tile_origin.empty()) std::tie(options.tile_x0, options.tile_y0) = cli::parse_pair(tile_origin, ',', "--tile-origin", kMaxCoordinate);
-    if (!origin.empty()) std::tie(options.image_x0, options.image_y0) = cli::parse_pair(origin, ',', "--origin", kMaxCoordinate);
+    if (!tile.empty())
+      std::tie(options.tile_width, options.tile_height) = cli::parse_pair(tile, 'x', "--tile", kMaxCoordinate);
+    if (!tile_origin.empty())
+      std::tie(options.tile_x0, options.tile_y0) = cli::parse_pair(tile_origin, ',', "--tile-origin", kMaxCoordinate);
+    if (!origin.empty())
+      std::tie(options.image_x0, options.image_y0) = cli::parse_pair(origin, ',', "--origin", kMaxCoordinate);
     const auto cb = cli::parse_pair(codeblock, 'x', "--codeblock", 1 << 20);
     options.codeblock_width = static_cast<int>(cb.first);
     options.codeblock_height = static_cast<int>(cb.second);
@@ -289,7 +338,9 @@ int main(int argc, char** argv) {
       throw std::invalid_argument("--timing takes text or json, got \"" + timing + "\"");
 
     using Clock = std::chrono::steady_clock;
-    auto since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
+    auto since = [](Clock::time_point t) {
+      return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+    };
     const auto t0 = Clock::now();
     gpuj2k::EncodeReport report;
     std::vector<std::uint8_t> bytes;

@@ -35,8 +35,9 @@ std::vector<std::pair<std::int64_t, std::int64_t>> parse_size_list(std::string_v
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = text.find(',', start);
-    out.push_back(parse_pair(text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start),
-                             'x', option, max));
+    out.push_back(
+        parse_pair(text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start), 'x',
+                   option, max));
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }

@@ -27,7 +27,8 @@ double peak_for_bits(int bits) {
 
 PsnrResult psnr_with_peak(const imageio::Image& reference, const imageio::Image& test, double peak) {
   if (reference.width != test.width || reference.height != test.height || reference.channels != test.channels)
-    throw std::invalid_argument("images differ in shape: reference is " + shape(reference) + ", test is " + shape(test));
+    throw std::invalid_argument("images differ in shape: reference is " + shape(reference) + ", test is " +
+                                shape(test));
   if (reference.width <= 0 || reference.height <= 0 || reference.channels <= 0)
     throw std::invalid_argument("images are empty (" + shape(reference) + ")");
   if (!(peak > 0) || !std::isfinite(peak)) throw std::invalid_argument("the peak value must be positive");
@@ -39,7 +40,8 @@ PsnrResult psnr_with_peak(const imageio::Image& reference, const imageio::Image&
   std::vector<double> sum(channels, 0.0);
   for (std::size_t i = 0; i < samples; ++i)
     for (std::size_t c = 0; c < channels; ++c) {
-      const double d = static_cast<double>(reference.pixels[i * channels + c]) - static_cast<double>(test.pixels[i * channels + c]);
+      const double d =
+          static_cast<double>(reference.pixels[i * channels + c]) - static_cast<double>(test.pixels[i * channels + c]);
       sum[c] += d * d;
     }
   PsnrResult r;

@@ -9,11 +9,11 @@
 namespace cli {
 
 struct PsnrResult {
-  double peak = 0;                   // the peak signal value the dB figures use
-  std::vector<double> channel_db;    // PSNR per channel; +infinity where the channel is identical
-  std::vector<double> channel_mse;   // mean squared error per channel
-  double all_db = 0;                 // PSNR of the MSE over every sample of every channel
-  double all_mse = 0;                // mean of the channel MSEs (all channels have the same sample count)
+  double peak = 0;                  // the peak signal value the dB figures use
+  std::vector<double> channel_db;   // PSNR per channel; +infinity where the channel is identical
+  std::vector<double> channel_mse;  // mean squared error per channel
+  double all_db = 0;                // PSNR of the MSE over every sample of every channel
+  double all_mse = 0;               // mean of the channel MSEs (all channels have the same sample count)
 };
 
 // 2^bits - 1 for bits in 1..32.

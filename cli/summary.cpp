@@ -13,8 +13,8 @@ std::string summary_line(Direction direction, const dwt::DwtParams& params, int 
   std::snprintf(time, sizeof time, "%.2f", milliseconds);
   return std::string(direction == Direction::Forward ? "forward " : "inverse ") +
          std::string(dwt::get_kernel(params.kernel).name) + " " + std::string(dwt::boundary_name(params.boundary)) +
-         " " + std::to_string(params.levels) + (params.levels == 1 ? " level " : " levels ") +
-         std::to_string(width) + "x" + std::to_string(height) + " origin (" + std::to_string(params.origin.x) + "," +
+         " " + std::to_string(params.levels) + (params.levels == 1 ? " level " : " levels ") + std::to_string(width) +
+         "x" + std::to_string(height) + " origin (" + std::to_string(params.origin.x) + "," +
          std::to_string(params.origin.y) + ") on " + backend_name + ": " + time + " ms";
 }
 

@@ -45,7 +45,8 @@ dwt::DwtParams resolve_params(const AppOptions& o, int default_levels) {
   dwt::DwtParams p;
   p.kernel = dwt::parse_kernel(o.kernel);
   if (dwt::get_kernel(p.kernel).reversible)
-    throw std::invalid_argument("the wavelet applications scale coefficients, so they need a float kernel (97, 53f, haar)");
+    throw std::invalid_argument(
+        "the wavelet applications scale coefficients, so they need a float kernel (97, 53f, haar)");
   p.boundary = dwt::parse_boundary(o.boundary);
   p.levels = o.levels < 0 ? default_levels : o.levels;
   return p;
@@ -169,10 +170,13 @@ void run_deform(const AppOptions& o) {
   imageio::Image picture;
   if (!o.picture.empty()) {
     const auto ops = wa::scale_operations(specs, 0, net.columns, net.rows, params);
-    picture = wa::stack_pictures(wa::render_mesh(surface, 360, 400), wa::band_layout_picture(ops, net.columns, net.rows, 160));
+    picture = wa::stack_pictures(wa::render_mesh(surface, 360, 400),
+                                 wa::band_layout_picture(ops, net.columns, net.rows, 160));
   }
-  if (out_ext == ".ply") wa::write_control_net_ply(o.output, deformed);
-  else wa::write_control_net_text(o.output, deformed);
+  if (out_ext == ".ply")
+    wa::write_control_net_ply(o.output, deformed);
+  else
+    wa::write_control_net_text(o.output, deformed);
   if (!o.mesh.empty()) wa::write_mesh(o.mesh, surface);
   if (!o.picture.empty()) imageio::write_image(o.picture, picture);
 }
@@ -180,8 +184,7 @@ void run_deform(const AppOptions& o) {
 }  // namespace
 
 std::vector<CLI::App*> add_app_commands(CLI::App& app, AppOptions& o) {
-  const std::string band_help =
-      "[CHANNEL:]BAND=OP, repeatable; BAND: LL, *, LEVEL:HL|LH|HH|* (LEVEL 1 = finest, or *)";
+  const std::string band_help = "[CHANNEL:]BAND=OP, repeatable; BAND: LL, *, LEVEL:HL|LH|HH|* (LEVEL 1 = finest, or *)";
   CLI::App* edit = app.add_subcommand("edit", "Scale, zero or keep subbands: forward DWT, band operation, inverse");
   edit->add_option("-i,--input", o.input, "Image")->required();
   edit->add_option("-o,--output", o.output, "Edited image (the input's sample format)")->required();
@@ -196,8 +199,9 @@ std::vector<CLI::App*> add_app_commands(CLI::App& app, AppOptions& o) {
   combine->add_option("--space", o.space, "rgb|ycc")->default_str("ycc");
   combine->add_option("--fit", o.fit, "How a detail image of another size is fitted: resize (bilinear) or tile")
       ->capture_default_str();
-  combine->add_option("--band", o.bands, band_help + "; OP: " + std::string(wa::rule_names()) +
-                                             " (defaults: Y detail bands max, everything else base)");
+  combine->add_option(
+      "--band", o.bands,
+      band_help + "; OP: " + std::string(wa::rule_names()) + " (defaults: Y detail bands max, everything else base)");
   add_engine_options(*combine, o);
 
   CLI::App* decouple = app.add_subcommand("decouple", "Texture-illuminance decoupling (thesis Figure 4.11)");
@@ -224,10 +228,14 @@ std::vector<CLI::App*> add_app_commands(CLI::App& app, AppOptions& o) {
 
 void run_app(const AppOptions& options) {
   switch (options.command) {
-    case AppCommand::Edit: return run_edit(options);
-    case AppCommand::Combine: return run_combine(options);
-    case AppCommand::Decouple: return run_decouple(options);
-    case AppCommand::Deform: return run_deform(options);
+    case AppCommand::Edit:
+      return run_edit(options);
+    case AppCommand::Combine:
+      return run_combine(options);
+    case AppCommand::Decouple:
+      return run_decouple(options);
+    case AppCommand::Deform:
+      return run_deform(options);
   }
 }
 

@@ -29,10 +29,10 @@ struct AppOptions {
   int threads = 0;
   std::string gl;
   float guard = 1.0f / 64.0f;
-  bool head = false;   // deform: the built-in head
-  std::string mesh;    // deform: tessellated surface
+  bool head = false;  // deform: the built-in head
+  std::string mesh;   // deform: tessellated surface
   int subdivisions = 4;
-  std::string picture; // deform: rendered PNG
+  std::string picture;  // deform: rendered PNG
   bool quiet = false;
 };
 

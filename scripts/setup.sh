@@ -18,6 +18,7 @@ PACKAGES=(
   ffmpeg                        # ffprobe, which the render tests read the videos back with
   libgtest-dev                  # tests
   clang libclang-rt-14-dev      # libFuzzer for the reader fuzzers (scripts/fuzz.sh)
+  clang-format                  # the C++ style check (scripts/check_format.sh)
   libopenjp2-tools grokj2k-tools  # reference decoders the codec's output is checked against
   openjph-tools                 # ojph_compress, the HTJ2K reference in bench/speed (and its smoke test)
   python3 python3-matplotlib    # bench/table41, bench/psnr and Figure 4.13

@@ -3,11 +3,13 @@
 # Release build and under AddressSanitizer + UndefinedBehaviorSanitizer. GPU tests run on whatever
 # the GL layer finds (Mesa llvmpipe on machines without a GPU): they are never skipped for that.
 # Test programs run side by side (ctest -j): many wait on outside decoders, and no test times itself.
+# First, the C++ sources must be formatted as .clang-format says (check_format.sh).
 # Then the codec is built alone and installed, and examples/ is built against it (check_codec_alone.sh).
 # Last, every file reader is fuzzed for FUZZ_SECONDS (default 30) each (scripts/fuzz.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
+bash scripts/check_format.sh
 
 bash scripts/build.sh build
 (cd build && ctest --output-on-failure --timeout 900 -j "$(nproc)")

@@ -74,7 +74,8 @@ TEST(ApiDecode, LosslessStreamsDecodeToTheirSamples) {
         EXPECT_EQ(comp.precision, bits);
         EXPECT_FALSE(comp.is_signed);
         for (std::size_t i = 0; i < comp.samples.size(); ++i)
-          ASSERT_EQ(comp.samples[i], e.samples[i * 3 + static_cast<std::size_t>(c)]) << "component " << c << " sample " << i;
+          ASSERT_EQ(comp.samples[i], e.samples[i * 3 + static_cast<std::size_t>(c)])
+              << "component " << c << " sample " << i;
       }
       EXPECT_TRUE(image.warnings.empty());
     }
@@ -98,15 +99,17 @@ TEST(ApiDecode, IntoCallerBuffersOfEveryLayout) {
   // Planar 16-bit words, rows padded to 40 samples, planes padded by 7 rows; the padding untouched.
   const std::size_t row = 40, plane = row * (17 + 7);
   std::vector<std::uint16_t> planar(plane * 3, 0xBEEF);
-  gpuj2k::OutputView p{planar.data(), planar.size() * 2, 29, 17, 3, gpuj2k::SampleType::UInt16,
-                       gpuj2k::Layout::Planar, row * 2, plane * 2};
+  gpuj2k::OutputView p{planar.data(),          planar.size() * 2, 29,       17, 3, gpuj2k::SampleType::UInt16,
+                       gpuj2k::Layout::Planar, row * 2,           plane * 2};
   gpuj2k::decode_into(e.j2k.data(), e.j2k.size(), p);
   for (std::size_t c = 0; c < 3; ++c)
     for (std::size_t y = 0; y < 24; ++y)
       for (std::size_t x = 0; x < row; ++x) {
         const std::uint16_t got = planar[c * plane + y * row + x];
-        if (y < 17 && x < 29) ASSERT_EQ(got, e.samples[(y * 29 + x) * 3 + c]);
-        else ASSERT_EQ(got, 0xBEEF) << "padding written at " << c << "," << y << "," << x;
+        if (y < 17 && x < 29)
+          ASSERT_EQ(got, e.samples[(y * 29 + x) * 3 + c]);
+        else
+          ASSERT_EQ(got, 0xBEEF) << "padding written at " << c << "," << y << "," << x;
       }
 
   // Interleaved 32-bit integers.
@@ -136,7 +139,8 @@ TEST(ApiDecode, InfoMatchesTheDecodeAndWindowsMatchTheWhole) {
     const gpuj2k::DecodedComponent& all = whole.components[k == 0 ? 2 : 0];
     for (int y = 0; y < 20; ++y)
       for (int x = 0; x < 31; ++x)
-        ASSERT_EQ(got.samples[static_cast<std::size_t>(y * 31 + x)], all.samples[static_cast<std::size_t>((y + 5) * 64 + x + 10)]);
+        ASSERT_EQ(got.samples[static_cast<std::size_t>(y * 31 + x)],
+                  all.samples[static_cast<std::size_t>((y + 5) * 64 + x + 10)]);
   }
   gpuj2k::DecodeOptions reduced;
   reduced.reduce = 2;
@@ -203,8 +207,8 @@ TEST(ApiDecode, OpenJpegStreamsDecodeAsOpenJpegDecodesThem) {
     ppm << "P6\n45 31\n255\n";
     for (float v : image.pixels) ppm.put(static_cast<char>(static_cast<std::uint8_t>(v)));
   }
-  const std::string cmd = "opj_compress -i '" + (scratch / "in.ppm").string() + "' -o '" + (scratch / "x.j2k").string() +
-                          "' -r 20 -n 3 >/dev/null 2>&1";
+  const std::string cmd = "opj_compress -i '" + (scratch / "in.ppm").string() + "' -o '" +
+                          (scratch / "x.j2k").string() + "' -r 20 -n 3 >/dev/null 2>&1";
   if (std::system(cmd.c_str()) != 0) GTEST_SKIP() << "opj_compress is not installed";
   const imageio::Image reference = decode_with("opj_decompress", scratch / "x.j2k", scratch / "x.ppm");
   const gpuj2k::DecodedImage ours = gpuj2k::decode_file((scratch / "x.j2k").string());

@@ -34,8 +34,10 @@ Buffer make_buffer(int w, int h, int channels, int bits) {
   Buffer b;
   b.image = testimages::generate(testimages::Pattern::Mix, w, h, channels, bits);
   for (float v : b.image.pixels) {
-    if (bits <= 8) b.bytes8.push_back(static_cast<std::uint8_t>(v));
-    else b.bytes16.push_back(static_cast<std::uint16_t>(v));
+    if (bits <= 8)
+      b.bytes8.push_back(static_cast<std::uint8_t>(v));
+    else
+      b.bytes16.push_back(static_cast<std::uint16_t>(v));
   }
   return b;
 }
@@ -77,7 +79,8 @@ TEST(Api, LosslessBufferDecodesToItselfInOpenJpeg) {
     const std::vector<std::uint8_t> j2k = gpuj2k::encode(view_of(b), o, &report);
     EXPECT_EQ(report.width, 67);
     EXPECT_EQ(report.components, 3);
-    std::ofstream(scratch / "x.j2k", std::ios::binary).write(reinterpret_cast<const char*>(j2k.data()), std::streamsize(j2k.size()));
+    std::ofstream(scratch / "x.j2k", std::ios::binary)
+        .write(reinterpret_cast<const char*>(j2k.data()), std::streamsize(j2k.size()));
     EXPECT_EQ(decode_with("opj_decompress", scratch / "x.j2k", scratch / "x.ppm").pixels, b.image.pixels);
   }
 }
@@ -204,7 +207,8 @@ TEST(Api, ConcurrentEncodesGiveTheSameBytes) {
   std::vector<std::vector<std::uint8_t>> got(4);
   std::vector<std::thread> threads;
   for (std::size_t i = 0; i < got.size(); ++i)
-    threads.emplace_back([&, i] { got[i] = i % 2 ? gpuj2k::encode(view_of(b), lossless) : gpuj2k::encode(view_of(a), lossy); });
+    threads.emplace_back(
+        [&, i] { got[i] = i % 2 ? gpuj2k::encode(view_of(b), lossless) : gpuj2k::encode(view_of(a), lossy); });
   for (std::thread& t : threads) t.join();
   for (std::size_t i = 0; i < got.size(); ++i) EXPECT_EQ(got[i], i % 2 ? expected_b : expected_a) << i;
 }
@@ -229,7 +233,8 @@ TEST(Api, EncodesSharingAnEngineGiveTheSameBytes) {
   std::vector<std::thread> threads;
   for (std::size_t i = 0; i < got.size(); ++i)
     threads.emplace_back([&, i] {
-      got[i] = i % 2 ? gpuj2k::encode(view_of(b), lossless, &reports[i]) : gpuj2k::encode(view_of(a), lossy, &reports[i]);
+      got[i] =
+          i % 2 ? gpuj2k::encode(view_of(b), lossless, &reports[i]) : gpuj2k::encode(view_of(a), lossy, &reports[i]);
     });
   for (std::thread& t : threads) t.join();
   for (std::size_t i = 0; i < got.size(); ++i) {

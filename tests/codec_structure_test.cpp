@@ -11,8 +11,8 @@ namespace {
 
 using codec::Rect;
 
-codec::ImageGrid grid(std::int64_t x0, std::int64_t y0, std::int64_t w, std::int64_t h, std::int64_t tw, std::int64_t th,
-                      std::int64_t tx0, std::int64_t ty0) {
+codec::ImageGrid grid(std::int64_t x0, std::int64_t y0, std::int64_t w, std::int64_t h, std::int64_t tw,
+                      std::int64_t th, std::int64_t tx0, std::int64_t ty0) {
   return codec::ImageGrid{Rect{x0, y0, x0 + w, y0 + h}, tw, th, tx0, ty0};
 }
 
@@ -75,7 +75,8 @@ TEST(CodecStructure, CodeBlocksPartitionEverySubbandExactlyOnce) {
               }
             }
           for (std::size_t b = 0; b < res.bands.size(); ++b) {
-            EXPECT_EQ(covered[b], res.bands[b].rect.width() * res.bands[b].rect.height()) << "tile " << t << " r " << res.r;
+            EXPECT_EQ(covered[b], res.bands[b].rect.width() * res.bands[b].rect.height())
+                << "tile " << t << " r " << res.r;
             band_area += res.bands[b].rect.width() * res.bands[b].rect.height();
           }
         }

@@ -100,8 +100,8 @@ TEST(ByteWriter, BigEndianAndPatches) {
 TEST(Siz, ThreeComponent768x512EightBit) {
   // T.800 Table A.9: Lsiz = 38 + 3 * Csiz = 47; then Rsiz, eight u32 geometry fields, Csiz and
   // per component Ssiz = depth - 1 = 7, XRsiz = YRsiz = 1.
-  const Bytes expect = bytes({0xFF, 0x51, 0x00, 0x2F,                      // SIZ, Lsiz
-                              0x00, 0x00,                                  // Rsiz
+  const Bytes expect = bytes({0xFF, 0x51, 0x00, 0x2F,                          // SIZ, Lsiz
+                              0x00, 0x00,                                      // Rsiz
                               0x00, 0x00, 0x03, 0x00, 0x00, 0x00, 0x02, 0x00,  // Xsiz, Ysiz
                               0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,  // XOsiz, YOsiz
                               0x00, 0x00, 0x03, 0x00, 0x00, 0x00, 0x02, 0x00,  // XTsiz, YTsiz
@@ -121,7 +121,7 @@ TEST(Siz, SignedSubsampledComponentAndOffsets) {
   s.components[0] = {12, true, 2, 3};
   const Bytes got = written([&](cs::ByteWriter& w) { cs::write_siz(w, s); });
   ASSERT_EQ(got.size(), 2u + 41u);
-  EXPECT_EQ(got[3], 41);                                              // 38 + 3
+  EXPECT_EQ(got[3], 41);                                                  // 38 + 3
   EXPECT_EQ(Bytes(got.end() - 3, got.end()), bytes({0x8B, 0x02, 0x03}));  // signed | 11, 2, 3
   EXPECT_EQ(Bytes(got.begin() + 14, got.begin() + 22), bytes({0, 0, 0, 3, 0, 0, 0, 1}));
   EXPECT_EQ(cs::num_tiles_x(s), 2u);  // ceil((20 - 2) / 16)
@@ -137,15 +137,15 @@ TEST(Cod, WithPrecinctsSopEph) {
   c.layers = 3;
   c.mct = true;
   c.style.levels = 2;
-  c.style.xcb = 6;  // 64 wide
-  c.style.ycb = 5;  // 32 high
+  c.style.xcb = 6;             // 64 wide
+  c.style.ycb = 5;             // 32 high
   c.style.block_style = 0x01;  // selective arithmetic coding bypass (Table A.19)
   c.style.transform = cs::WaveletTransform::Reversible5x3;
   c.style.precincts = {{7, 7}, {8, 8}, {9, 8}};
   // Table A.12: Lcod = 12 + 3 precinct bytes; Scod = precincts | SOP | EPH = 7; SGcod = order 2,
   // layers 3, MCT 1; SPcod = 2 levels, 4, 3, style 1, transform 1, then PPy << 4 | PPx.
-  const Bytes expect = bytes({0xFF, 0x52, 0x00, 0x0F, 0x07, 0x02, 0x00, 0x03, 0x01, 0x02, 0x04, 0x03, 0x01, 0x01,
-                              0x77, 0x88, 0x89});
+  const Bytes expect =
+      bytes({0xFF, 0x52, 0x00, 0x0F, 0x07, 0x02, 0x00, 0x03, 0x01, 0x02, 0x04, 0x03, 0x01, 0x01, 0x77, 0x88, 0x89});
   EXPECT_EQ(written([&](cs::ByteWriter& w) { cs::write_cod(w, c); }), expect);
 }
 
@@ -202,7 +202,8 @@ TEST(Qcd, NoQuantizationAndDerived) {
   d.guard_bits = 3;
   d.style = cs::QuantizationStyle::ScalarDerived;
   d.steps = {{13, 0x123}};
-  EXPECT_EQ(written([&](cs::ByteWriter& w) { cs::write_qcd(w, d); }), bytes({0xFF, 0x5C, 0x00, 0x05, 0x61, 0x69, 0x23}));
+  EXPECT_EQ(written([&](cs::ByteWriter& w) { cs::write_qcd(w, d); }),
+            bytes({0xFF, 0x5C, 0x00, 0x05, 0x61, 0x69, 0x23}));
 }
 
 TEST(Qcc, EightAndSixteenBitComponent) {
@@ -259,8 +260,8 @@ TEST(TilePart, SotPsotSopEph) {
   cs::write_eph(w);
   cs::patch_psot(w, sot);
   // Table A.4: Lsot = 10, Isot, Psot = 12 (SOT) + 6 (SOP) + 1 + 2 (EPH) = 21, TPsot, TNsot.
-  EXPECT_EQ(out, bytes({0x11, 0x11, 0xFF, 0x90, 0x00, 0x0A, 0x00, 0x05, 0x00, 0x00, 0x00, 0x15, 0x01, 0x03, 0xFF,
-                        0x91, 0x00, 0x04, 0x00, 0x01, 0x00, 0xFF, 0x92}));
+  EXPECT_EQ(out, bytes({0x11, 0x11, 0xFF, 0x90, 0x00, 0x0A, 0x00, 0x05, 0x00, 0x00, 0x00, 0x15,
+                        0x01, 0x03, 0xFF, 0x91, 0x00, 0x04, 0x00, 0x01, 0x00, 0xFF, 0x92}));
 }
 
 TEST(CodestreamWriter, AssemblesHeaderTilePartsAndEoc) {
@@ -271,16 +272,18 @@ TEST(CodestreamWriter, AssemblesHeaderTilePartsAndEoc) {
   h.comments.push_back(cs::latin_comment("x"));
   const Bytes body = bytes({0x00});
   const Bytes got = cs::write_codestream(h, {{0, 0, 1, body}});
-  const Bytes expect = bytes({
-      0xFF, 0x4F,                                                                      // SOC
-      0xFF, 0x51, 0x00, 0x29, 0x00, 0x00, 0, 0, 0, 4, 0, 0, 0, 4, 0, 0, 0, 0, 0, 0, 0, 0,  // SIZ
-      0, 0, 0, 4, 0, 0, 0, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0x00, 0x01, 0x07, 0x01, 0x01,     //
-      0xFF, 0x52, 0x00, 0x0C, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x04, 0x04, 0x00, 0x01,  // COD
-      0xFF, 0x5C, 0x00, 0x04, 0x40, 0x40,                                                  // QCD
-      0xFF, 0x64, 0x00, 0x05, 0x00, 0x01, 'x',                                             // COM
-      0xFF, 0x90, 0x00, 0x0A, 0x00, 0x00, 0x00, 0x00, 0x00, 0x0F, 0x00, 0x01,              // SOT
-      0xFF, 0x93, 0x00,                                                                    // SOD, body
-      0xFF, 0xD9});                                                                        // EOC
+  const Bytes expect =
+      bytes({0xFF, 0x4F,  // SOC
+             0xFF, 0x51, 0x00, 0x29, 0x00, 0x00, 0,    0,    0,    4,    0,    0,    0,    4,
+             0,    0,    0,    0,    0,    0,    0,    0,  // SIZ
+             0,    0,    0,    4,    0,    0,    0,    4,    0,    0,    0,    0,    0,    0,
+             0,    0,    0x00, 0x01, 0x07, 0x01, 0x01,                                            //
+             0xFF, 0x52, 0x00, 0x0C, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x04, 0x04, 0x00, 0x01,  // COD
+             0xFF, 0x5C, 0x00, 0x04, 0x40, 0x40,                                                  // QCD
+             0xFF, 0x64, 0x00, 0x05, 0x00, 0x01, 'x',                                             // COM
+             0xFF, 0x90, 0x00, 0x0A, 0x00, 0x00, 0x00, 0x00, 0x00, 0x0F, 0x00, 0x01,              // SOT
+             0xFF, 0x93, 0x00,                                                                    // SOD, body
+             0xFF, 0xD9});                                                                        // EOC
   EXPECT_EQ(got, expect);
 }
 
@@ -749,10 +752,14 @@ bool read_netpbm(const std::string& path, Netpbm& img, std::string& error) {
   } else if (magic == "P7") {
     std::string key;
     while (in >> key && key != "ENDHDR") {
-      if (key == "WIDTH") in >> img.width;
-      else if (key == "HEIGHT") in >> img.height;
-      else if (key == "DEPTH") in >> img.depth;
-      else if (key == "MAXVAL") in >> img.maxval;
+      if (key == "WIDTH")
+        in >> img.width;
+      else if (key == "HEIGHT")
+        in >> img.height;
+      else if (key == "DEPTH")
+        in >> img.depth;
+      else if (key == "MAXVAL")
+        in >> img.maxval;
       else {
         std::string rest;
         std::getline(in, rest);
@@ -848,9 +855,12 @@ struct EmptyCase {
 std::string output_extension(const std::string& decoder, const EmptyCase& c) {
   if (c.header.siz.components[0].is_signed) return "pgx";  // Netpbm has no signed samples
   switch (c.header.siz.components.size()) {
-    case 1: return "pgm";
-    case 3: return "ppm";
-    default: return decoder == "opj_decompress" ? "pnm" : "raw";
+    case 1:
+      return "pgm";
+    case 3:
+      return "ppm";
+    default:
+      return decoder == "opj_decompress" ? "pnm" : "raw";
   }
 }
 
@@ -1089,7 +1099,9 @@ TEST(Cap, HtOnlyCapabilitiesAfterSiz) {
   const std::size_t cap = 4 + (static_cast<std::size_t>(out[4]) << 8 | out[5]);
   EXPECT_EQ(out[6], 0x40);
   const std::vector<std::uint8_t> expected = {0xFF, 0x50, 0x00, 0x08, 0x00, 0x02, 0x00, 0x00, 0x00, 0x02};
-  EXPECT_EQ(std::vector<std::uint8_t>(out.begin() + static_cast<std::ptrdiff_t>(cap), out.begin() + static_cast<std::ptrdiff_t>(cap) + 10), expected);
+  EXPECT_EQ(std::vector<std::uint8_t>(out.begin() + static_cast<std::ptrdiff_t>(cap),
+                                      out.begin() + static_cast<std::ptrdiff_t>(cap) + 10),
+            expected);
   EXPECT_EQ(out[cap + 10], 0xFF);
   EXPECT_EQ(out[cap + 11], 0x52);
 }

@@ -77,7 +77,8 @@ TEST(DwtCpu, FloatKernelsReconstructWhereTheFilterBankIsPerfect) {
             backend().forward(dwt::make_span(plane.data(), s.w, s.h), p);
             backend().inverse(dwt::make_span(plane.data(), s.w, s.h), p);
             double worst = 0;
-            for (std::size_t i = 0; i < plane.size(); ++i) worst = std::max(worst, double(std::abs(plane[i] - input[i])));
+            for (std::size_t i = 0; i < plane.size(); ++i)
+              worst = std::max(worst, double(std::abs(plane[i] - input[i])));
             ASSERT_LE(worst, 1e-4 * 255) << testmatrix::describe(dwt::get_kernel(kid).name.data(), b, s, o, levels);
           }
 }
@@ -145,7 +146,8 @@ TEST(DwtCpu, StridedPlanesOnlyTouchTheirOwnSamples) {
   const int w = 37, h = 23, stride = 50;
   std::vector<float> buffer(static_cast<std::size_t>(stride * h), -7.0f);
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) buffer[static_cast<std::size_t>(y * stride + x)] = static_cast<float>((x * 13 + y * 7) % 41);
+    for (int x = 0; x < w; ++x)
+      buffer[static_cast<std::size_t>(y * stride + x)] = static_cast<float>((x * 13 + y * 7) % 41);
   auto copy = buffer;
   dwt::PlaneSpan<float> span{buffer.data(), w, h, stride};
   const dwt::DwtParams p{dwt::KernelId::Irreversible97, dwt::Boundary::Symmetric, 3, {1, 0}};
@@ -171,14 +173,18 @@ TEST(DwtCpu, RejectsImpossibleRequests) {
   std::vector<float> f(64);
   std::vector<std::int32_t> i(64);
   auto& cpu = backend();
-  EXPECT_THROW(cpu.forward(dwt::make_span(f.data(), 8, 8), {dwt::KernelId::Irreversible97, dwt::Boundary::Symmetric, 4, {}}),
-               dwt::DwtError);
+  EXPECT_THROW(
+      cpu.forward(dwt::make_span(f.data(), 8, 8), {dwt::KernelId::Irreversible97, dwt::Boundary::Symmetric, 4, {}}),
+      dwt::DwtError);
   EXPECT_THROW(cpu.forward(dwt::make_span(f.data(), 0, 8), {}), dwt::DwtError);
-  EXPECT_THROW(cpu.forward(dwt::make_span(f.data(), 8, 8), {dwt::KernelId::Reversible53, dwt::Boundary::Symmetric, 1, {}}),
-               dwt::DwtError);
-  EXPECT_THROW(cpu.forward(dwt::make_span(i.data(), 8, 8), {dwt::KernelId::Irreversible97, dwt::Boundary::Symmetric, 1, {}}),
-               dwt::DwtError);
-  EXPECT_THROW(cpu.forward(dwt::make_span(f.data(), 8, 8), {dwt::KernelId::Irreversible97, dwt::Boundary::Symmetric, 1, {-1, 0}}),
+  EXPECT_THROW(
+      cpu.forward(dwt::make_span(f.data(), 8, 8), {dwt::KernelId::Reversible53, dwt::Boundary::Symmetric, 1, {}}),
+      dwt::DwtError);
+  EXPECT_THROW(
+      cpu.forward(dwt::make_span(i.data(), 8, 8), {dwt::KernelId::Irreversible97, dwt::Boundary::Symmetric, 1, {}}),
+      dwt::DwtError);
+  EXPECT_THROW(cpu.forward(dwt::make_span(f.data(), 8, 8),
+                           {dwt::KernelId::Irreversible97, dwt::Boundary::Symmetric, 1, {-1, 0}}),
                dwt::DwtError);
   try {
     cpu.forward(dwt::make_span(f.data(), 8, 8), {dwt::KernelId::Irreversible97, dwt::Boundary::Symmetric, 9, {}});

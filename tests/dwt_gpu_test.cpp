@@ -142,7 +142,8 @@ TEST(DwtGpu, StridedPlane) {
   const int w = 37, h = 23, stride = 41;
   std::vector<float> buffer(static_cast<std::size_t>(stride * h), -7.0f);
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) buffer[static_cast<std::size_t>(y * stride + x)] = static_cast<float>((x * 13 + y * 7) % 41);
+    for (int x = 0; x < w; ++x)
+      buffer[static_cast<std::size_t>(y * stride + x)] = static_cast<float>((x * 13 + y * 7) % 41);
   auto on_cpu = buffer;
   const dwt::DwtParams p{dwt::KernelId::Irreversible97, dwt::Boundary::Symmetric, 3, {1, 0}};
   gpu().forward(dwt::PlaneSpan<float>{buffer.data(), w, h, stride}, p);
@@ -157,11 +158,14 @@ TEST(DwtGpu, RefusesTheReversibleKernel) {
   std::vector<float> floats(16);
   EXPECT_FALSE(gpu().supports(dwt::KernelId::Reversible53));
   EXPECT_TRUE(gpu().supports(dwt::KernelId::Irreversible97));
-  EXPECT_THROW(gpu().forward(dwt::make_span(ints.data(), 4, 4), {dwt::KernelId::Reversible53, dwt::Boundary::Symmetric, 1, {}}),
+  EXPECT_THROW(
+      gpu().forward(dwt::make_span(ints.data(), 4, 4), {dwt::KernelId::Reversible53, dwt::Boundary::Symmetric, 1, {}}),
+      dwt::DwtError);
+  EXPECT_THROW(gpu().forward(dwt::make_span(floats.data(), 4, 4),
+                             {dwt::KernelId::Reversible53, dwt::Boundary::Symmetric, 1, {}}),
                dwt::DwtError);
-  EXPECT_THROW(gpu().forward(dwt::make_span(floats.data(), 4, 4), {dwt::KernelId::Reversible53, dwt::Boundary::Symmetric, 1, {}}),
-               dwt::DwtError);
-  EXPECT_THROW(gpu().forward(dwt::make_span(floats.data(), 4, 4), {dwt::KernelId::Irreversible97, dwt::Boundary::Symmetric, 3, {}}),
+  EXPECT_THROW(gpu().forward(dwt::make_span(floats.data(), 4, 4),
+                             {dwt::KernelId::Irreversible97, dwt::Boundary::Symmetric, 3, {}}),
                dwt::DwtError);
 }
 

@@ -104,7 +104,9 @@ inline std::vector<double> synthesise(const std::vector<double>& c, long start, 
   const long nl = low_count(start, n);
   std::vector<double> y(static_cast<std::size_t>(n));
   long il = 0, ih = nl;
-  for (long i = 0; i < n; ++i) y[static_cast<std::size_t>(i)] = ((start + i) & 1) ? c[static_cast<std::size_t>(ih++)] : c[static_cast<std::size_t>(il++)];
+  for (long i = 0; i < n; ++i)
+    y[static_cast<std::size_t>(i)] =
+        ((start + i) & 1) ? c[static_cast<std::size_t>(ih++)] : c[static_cast<std::size_t>(il++)];
   const FilterBank b = bank(f);
   std::vector<double> x(static_cast<std::size_t>(n));
   for (long m = 0; m < n; ++m) {
@@ -123,12 +125,16 @@ inline std::vector<double> synthesise(const std::vector<double>& c, long start, 
 struct Plane {
   int w = 0, h = 0;
   std::vector<double> v;
-  double& at(int x, int y) { return v[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)]; }
+  double& at(int x, int y) {
+    return v[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)];
+  }
 };
 
 // 2-D, `levels` levels, Mallat layout, by rows and columns of the shrinking LL region.
 inline void transform(Plane& p, long x0, long y0, int levels, Filter f, Ext e, bool inverse) {
-  struct Region { long sx, sy, w, h; };
+  struct Region {
+    long sx, sy, w, h;
+  };
   std::vector<Region> regions;
   Region r{x0, y0, p.w, p.h};
   for (int d = 0; d < levels; ++d) {
@@ -152,9 +158,15 @@ inline void transform(Plane& p, long x0, long y0, int levels, Filter f, Ext e, b
     }
   };
   if (!inverse) {
-    for (const auto& g : regions) { do_cols(g); do_rows(g); }
+    for (const auto& g : regions) {
+      do_cols(g);
+      do_rows(g);
+    }
   } else {
-    for (auto it = regions.rbegin(); it != regions.rend(); ++it) { do_rows(*it); do_cols(*it); }
+    for (auto it = regions.rbegin(); it != regions.rend(); ++it) {
+      do_rows(*it);
+      do_cols(*it);
+    }
   }
 }
 
@@ -166,7 +178,10 @@ inline std::vector<long> rev53_analyse(const std::vector<long>& x, long i0) {
   if (n == 1) return {(i0 & 1) ? 2 * x[0] : x[0]};
   auto X = [&](long i) {  // PSE on canvas coordinates
     long k = i - i0;
-    while (k < 0 || k >= n) { if (k < 0) k = -k; if (k >= n) k = 2 * (n - 1) - k; }
+    while (k < 0 || k >= n) {
+      if (k < 0) k = -k;
+      if (k >= n) k = 2 * (n - 1) - k;
+    }
     return x[static_cast<std::size_t>(k)];
   };
   auto floordiv = [](long a, long b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };

@@ -40,18 +40,24 @@ inline const std::vector<dwt::Origin>& origins() {
 
 inline ref::Ext to_ref(dwt::Boundary b) {
   switch (b) {
-    case dwt::Boundary::Symmetric: return ref::Ext::Sym;
-    case dwt::Boundary::Periodic: return ref::Ext::Per;
-    case dwt::Boundary::Zero: return ref::Ext::Zero;
+    case dwt::Boundary::Symmetric:
+      return ref::Ext::Sym;
+    case dwt::Boundary::Periodic:
+      return ref::Ext::Per;
+    case dwt::Boundary::Zero:
+      return ref::Ext::Zero;
   }
   return ref::Ext::Sym;
 }
 
 inline ref::Filter to_ref(dwt::KernelId k) {
   switch (k) {
-    case dwt::KernelId::Irreversible97: return ref::Filter::F97;
-    case dwt::KernelId::Haar: return ref::Filter::Haar;
-    default: return ref::Filter::F53;
+    case dwt::KernelId::Irreversible97:
+      return ref::Filter::F97;
+    case dwt::KernelId::Haar:
+      return ref::Filter::Haar;
+    default:
+      return ref::Filter::F53;
   }
 }
 

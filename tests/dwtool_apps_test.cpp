@@ -98,11 +98,13 @@ TEST_F(DwtoolApps, BadInputGivesOneLineExitOneAndNoOutput) {
       {edit + "--space lab", "unknown colour space"},
       {"edit -i " + quoted(input) + " -o " + quoted(out) + " --levels 9", "levels"},
       {"edit -i " + quoted(dir / "missing.png") + " -o " + quoted(out), "missing.png"},
-      {"combine -i " + quoted(input) + " --detail " + quoted(dir / "missing.png") + " -o " + quoted(out), "missing.png"},
+      {"combine -i " + quoted(input) + " --detail " + quoted(dir / "missing.png") + " -o " + quoted(out),
+       "missing.png"},
       {"combine -i " + quoted(input) + " --detail " + quoted(input) + " -o " + quoted(out) + " --band Y:1:*=bigger",
        "unknown rule"},
       {"decouple -i " + quoted(input) + " -o " + quoted(out) + " --illuminance " + quoted(dir / "l.png") +
-           " --levels 0", "at least one decomposition level"},
+           " --levels 0",
+       "at least one decomposition level"},
       {"deform --head -o " + quoted(dir / "out.ply") + " --levels 9", "levels"},
       {"deform -i " + quoted(input) + " -o " + quoted(dir / "out.ply"), "controlnet"},
   };

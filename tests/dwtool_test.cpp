@@ -317,8 +317,8 @@ TEST_F(DwtoolTest, UnknownKernelBoundaryBackendAreRefused) {
 
 TEST_F(DwtoolTest, TooManyLevelsIsRefused) {
   write_test_image("in.png", 16, 16);
-  const RunResult r = expect_failure(with(forward_args(path("in.png"), path("c.pfm")), {"--levels", "40"}),
-                                     path("c.pfm"));
+  const RunResult r =
+      expect_failure(with(forward_args(path("in.png"), path("c.pfm")), {"--levels", "40"}), path("c.pfm"));
   EXPECT_NE(r.err.find(path("in.png")), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("40 levels"), std::string::npos) << r.err;
 }

@@ -45,8 +45,7 @@ std::vector<float> render_r32f(const Context& ctx, const char* fragment_src, int
                                const glc::Texture* input = nullptr) {
   const glc::GlApi& gl = ctx.gl();
   const glc::Program program = glc::Program::link(gl, kFullScreenVs, fragment_src, "r32f-test");
-  const glc::Texture target =
-      glc::Texture::create_2d(gl, w, h, GL_R32F, GL_RED, GL_FLOAT, nullptr);
+  const glc::Texture target = glc::Texture::create_2d(gl, w, h, GL_R32F, GL_RED, GL_FLOAT, nullptr);
   glc::Framebuffer fbo = glc::Framebuffer::create(gl);
   fbo.attach_color(target);
   const glc::VertexArray vao = glc::VertexArray::create(gl);
@@ -79,7 +78,8 @@ void expect_renders(const Context& ctx) {
   const std::vector<float> px = render_r32f(ctx, R"(#version 330 core
 layout(location = 0) out float v;
 void main() { v = 42.0; }
-)", 3, 2);
+)",
+                                            3, 2);
   for (float v : px) EXPECT_EQ(v, 42.0f);
 }
 
@@ -117,8 +117,7 @@ TEST(GlContext, AutoCreates) {
   EXPECT_FALSE(ctx->version().empty());
   EXPECT_NE(ctx->platform(), Platform::Auto);
   EXPECT_GE(ctx->max_texture_size(), 1024);
-  EXPECT_NE(ctx->description().find(std::string(glc::platform_name(ctx->platform()))),
-            std::string::npos);
+  EXPECT_NE(ctx->description().find(std::string(glc::platform_name(ctx->platform()))), std::string::npos);
   expect_renders(*ctx);
 }
 
@@ -254,8 +253,8 @@ TEST(GlContext, HandOverToAnotherThread) {
 }
 
 TEST(Platform, ParseRoundTrip) {
-  for (Platform p : {Platform::Auto, Platform::EglDevice, Platform::EglSurfaceless,
-                     Platform::EglDefault, Platform::OsMesa}) {
+  for (Platform p :
+       {Platform::Auto, Platform::EglDevice, Platform::EglSurfaceless, Platform::EglDefault, Platform::OsMesa}) {
     EXPECT_EQ(glc::parse_platform(glc::platform_name(p)), p);
   }
 }
@@ -372,11 +371,11 @@ TEST(Render, R32FFragCoordExact) {
   const std::vector<float> px = render_r32f(*ctx, R"(#version 330 core
 layout(location = 0) out float v;
 void main() { v = gl_FragCoord.x + 1000.0 * gl_FragCoord.y; }
-)", kW, kH);
+)",
+                                            kW, kH);
   for (int y = 0; y < kH; ++y) {
     for (int x = 0; x < kW; ++x) {
-      const float expected =
-          (static_cast<float>(x) + 0.5f) + 1000.0f * (static_cast<float>(y) + 0.5f);
+      const float expected = (static_cast<float>(x) + 0.5f) + 1000.0f * (static_cast<float>(y) + 0.5f);
       EXPECT_EQ(px[static_cast<std::size_t>(y * kW + x)], expected) << "x=" << x << " y=" << y;
     }
   }
@@ -389,8 +388,7 @@ TEST(Render, R32FTexelFetchRoundTrip) {
   constexpr int kW = 7, kH = 5;
   std::vector<float> data(kW * kH);
   for (std::size_t i = 0; i < data.size(); ++i) data[i] = 0.1f * static_cast<float>(i) - 1.7f;
-  const glc::Texture input =
-      glc::Texture::create_2d(ctx->gl(), kW, kH, GL_R32F, GL_RED, GL_FLOAT, data.data());
+  const glc::Texture input = glc::Texture::create_2d(ctx->gl(), kW, kH, GL_R32F, GL_RED, GL_FLOAT, data.data());
   EXPECT_EQ(input.width(), kW);
   EXPECT_EQ(input.height(), kH);
   const std::vector<float> px = render_r32f(*ctx, kFetchTimesTwoFs, kW, kH, &input);
@@ -403,13 +401,13 @@ TEST(Render, R8OddWidthUpload) {
   auto ctx = Context::create();
   constexpr int kW = 3, kH = 3;
   const unsigned char data[kW * kH] = {10, 20, 30, 40, 50, 60, 70, 80, 90};
-  const glc::Texture input =
-      glc::Texture::create_2d(ctx->gl(), kW, kH, GL_R8, GL_RED, GL_UNSIGNED_BYTE, data);
+  const glc::Texture input = glc::Texture::create_2d(ctx->gl(), kW, kH, GL_R8, GL_RED, GL_UNSIGNED_BYTE, data);
   const std::vector<float> px = render_r32f(*ctx, R"(#version 330 core
 uniform sampler2D src;
 layout(location = 0) out float v;
 void main() { v = round(255.0 * texelFetch(src, ivec2(gl_FragCoord.xy), 0).r); }
-)", kW, kH, &input);
+)",
+                                            kW, kH, &input);
   for (int i = 0; i < kW * kH; ++i) EXPECT_EQ(px[static_cast<std::size_t>(i)], data[i]) << i;
 }
 
@@ -423,8 +421,7 @@ TEST(Resources, IncompleteFramebufferNamesStatus) {
     fbo.attach_color(no_storage);
     FAIL() << "expected GlError";
   } catch (const GlError& e) {
-    EXPECT_NE(std::string(e.what()).find("GL_FRAMEBUFFER_INCOMPLETE"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("GL_FRAMEBUFFER_INCOMPLETE"), std::string::npos) << e.what();
   }
   ctx->gl().glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
@@ -460,7 +457,8 @@ TEST(Resources, MultipleColorAttachments) {
 layout(location = 0) out float a;
 layout(location = 1) out float b;
 void main() { a = 1.0; b = 2.0; }
-)", "mrt");
+)",
+                                                  "mrt");
   const glc::VertexArray vao = glc::VertexArray::create(gl);
   gl.glViewport(0, 0, 4, 2);
   program.use();

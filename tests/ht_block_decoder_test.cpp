@@ -45,7 +45,8 @@ codec::ht::HtCodewords cleanup_only(std::span<const std::uint8_t> cleanup, int p
 }
 
 std::int32_t expected_sample(std::int32_t q, int plane) {
-  const std::uint32_t magnitude = q < 0 ? static_cast<std::uint32_t>(-static_cast<std::int64_t>(q)) : static_cast<std::uint32_t>(q);
+  const std::uint32_t magnitude =
+      q < 0 ? static_cast<std::uint32_t>(-static_cast<std::int64_t>(q)) : static_cast<std::uint32_t>(q);
   const std::uint32_t mu = magnitude >> plane;
   if (mu == 0) return 0;
   const auto v = static_cast<std::int32_t>((2 * mu + 1) << plane);
@@ -66,16 +67,16 @@ std::string round_trip(const std::vector<std::int32_t>& q, int width, int height
   }
   for (std::size_t i = 0; i < q.size(); ++i)
     if (out[i] != expected_sample(q[i], plane))
-      return std::to_string(width) + "x" + std::to_string(height) + ", " + std::to_string(planes) + " planes, cleanup plane " +
-             std::to_string(plane) + ": sample " + std::to_string(i) + " reads " + std::to_string(out[i]) + ", expected " +
-             std::to_string(expected_sample(q[i], plane));
+      return std::to_string(width) + "x" + std::to_string(height) + ", " + std::to_string(planes) +
+             " planes, cleanup plane " + std::to_string(plane) + ": sample " + std::to_string(i) + " reads " +
+             std::to_string(out[i]) + ", expected " + std::to_string(expected_sample(q[i], plane));
   return {};
 }
 
 TEST(HtBlockDecoder, EveryShapeAndPlaneCountRoundTrips) {
   std::mt19937 rng(20261217);
-  const int shapes[][2] = {{4, 1024}, {1024, 4}, {64, 64}, {32, 32}, {1, 1}, {1, 7}, {7, 1}, {3, 5},
-                           {17, 9}, {63, 65}, {2, 2}, {5, 64}, {64, 5}, {33, 31}};
+  const int shapes[][2] = {{4, 1024}, {1024, 4}, {64, 64}, {32, 32}, {1, 1},  {1, 7},  {7, 1},
+                           {3, 5},    {17, 9},   {63, 65}, {2, 2},   {5, 64}, {64, 5}, {33, 31}};
   for (const auto& s : shapes)
     for (int planes = 1; planes <= 29; ++planes) {
       for (double density : {0.03, 0.4, 1.0}) {
@@ -182,8 +183,12 @@ struct ModelRefinement {
 
 ModelRefinement model_refinement(const std::vector<std::int32_t>& q, int w, int h, int p, bool causal) {
   const auto n = q.size();
-  auto magnitude = [&](std::size_t i) { return static_cast<std::uint32_t>(q[i] < 0 ? -static_cast<std::int64_t>(q[i]) : q[i]); };
-  auto at = [&](int x, int y) { return static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x); };
+  auto magnitude = [&](std::size_t i) {
+    return static_cast<std::uint32_t>(q[i] < 0 ? -static_cast<std::int64_t>(q[i]) : q[i]);
+  };
+  auto at = [&](int x, int y) {
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+  };
   std::vector<int> cleanup(n), found(n, 0);
   for (std::size_t i = 0; i < n; ++i) cleanup[i] = (magnitude(i) >> p) != 0;
   auto visited_before = [&](int nx, int ny, int x, int y) {
@@ -256,8 +261,9 @@ TEST(HtBlockDecoder, SigPropAndMagRefAgainstTheModel) {
             codec::ht::decode_ht_block(set, s[0], s[1], out);
             const auto& want = passes == 1 ? m.expected_one_pass : m.expected_two_passes;
             for (std::size_t i = 0; i < q.size(); ++i)
-              ASSERT_EQ(out[i], want[i]) << s[0] << "x" << s[1] << ", " << planes << " planes, cleanup plane " << p << ", "
-                                         << passes << " refinement pass(es)" << (causal ? ", causal" : "") << ": sample " << i;
+              ASSERT_EQ(out[i], want[i]) << s[0] << "x" << s[1] << ", " << planes << " planes, cleanup plane " << p
+                                         << ", " << passes << " refinement pass(es)" << (causal ? ", causal" : "")
+                                         << ": sample " << i;
             ++checked;
           }
         }

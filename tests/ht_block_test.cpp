@@ -154,14 +154,17 @@ Decoded decode_cleanup(const std::vector<std::uint8_t>& d, int width, int height
   std::vector<int> sigma(static_cast<std::size_t>(pw * ph), 0), expo(static_cast<std::size_t>(pw * ph), 0);
   std::vector<std::uint32_t> mu(static_cast<std::size_t>(pw * ph), 0);
   std::vector<int> neg(static_cast<std::size_t>(pw * ph), 0);
-  auto at = [&](std::vector<int>& a, int x, int y) -> int { return x < 0 || y < 0 || x >= pw || y >= ph ? 0 : a[static_cast<std::size_t>(y * pw + x)]; };
+  auto at = [&](std::vector<int>& a, int x, int y) -> int {
+    return x < 0 || y < 0 || x >= pw || y >= ph ? 0 : a[static_cast<std::size_t>(y * pw + x)];
+  };
   const int dx[4] = {0, 0, 1, 1}, dy[4] = {0, 1, 0, 1};
 
   auto find_row = [&](QuadRowKind kind, int c) -> const CxtVlcRow& {
     for (const CxtVlcRow& r : codec::ht::cxt_vlc_rows(kind)) {
       if (r.context != c) continue;
       bool match = true;
-      for (int i = 0; i < r.length && match; ++i) match = vlc.at(vpos + static_cast<std::size_t>(i)) == ((r.codeword >> i) & 1);
+      for (int i = 0; i < r.length && match; ++i)
+        match = vlc.at(vpos + static_cast<std::size_t>(i)) == ((r.codeword >> i) & 1);
       if (match) {
         vpos += r.length;
         return r;
@@ -284,7 +287,8 @@ Decoded decode_cleanup(const std::vector<std::uint8_t>& d, int width, int height
 // the SigProp pass sees the segment end after it).
 class SigPropReader {
  public:
-  SigPropReader(const std::vector<std::uint8_t>& d, std::size_t start, std::size_t size) : d_(d), pos_(start), end_(start + size) {}
+  SigPropReader(const std::vector<std::uint8_t>& d, std::size_t start, std::size_t size)
+      : d_(d), pos_(start), end_(start + size) {}
   int bit() {
     if (left_ == 0) {
       current_ = pos_ < end_ ? d_[pos_] : 0;
@@ -310,7 +314,8 @@ class SigPropReader {
 // 0x8F and whose low 7 bits are all 1 gives 7 bits; 0s past the segment's start.
 class MagRefReader {
  public:
-  MagRefReader(const std::vector<std::uint8_t>& d, std::size_t start, std::size_t size) : d_(d), start_(start), pos_(start + size) {}
+  MagRefReader(const std::vector<std::uint8_t>& d, std::size_t start, std::size_t size)
+      : d_(d), start_(start), pos_(start + size) {}
   int bit() {
     if (left_ == 0) {
       current_ = pos_ > start_ ? d_[--pos_] : 0;
@@ -355,7 +360,8 @@ Decoded decode_refinement(const Decoded& cleanup, const std::vector<std::uint8_t
     for (int y0 = 0; y0 < height; y0 += 4)
       for (int x = 0; x < width; ++x)
         for (int y = y0; y < std::min(y0 + 4, height); ++y)
-          if (state[static_cast<std::size_t>(y * width + x)] == 1) out.mu[static_cast<std::size_t>(y * width + x)] |= static_cast<std::uint32_t>(magref.bit());
+          if (state[static_cast<std::size_t>(y * width + x)] == 1)
+            out.mu[static_cast<std::size_t>(y * width + x)] |= static_cast<std::uint32_t>(magref.bit());
   }
   SigPropReader sigprop(d, start, sigprop_size);
   for (int y0 = 0; y0 < height; y0 += 4)
@@ -367,7 +373,8 @@ Decoded decode_refinement(const Decoded& cleanup, const std::vector<std::uint8_t
           if (state[i] != 0) continue;
           bool neighbour = false;
           for (int dy2 = -1; dy2 <= 1; ++dy2)
-            for (int dx2 = -1; dx2 <= 1; ++dx2) neighbour = neighbour || ((dx2 != 0 || dy2 != 0) && significant(x + dx2, y + dy2));
+            for (int dx2 = -1; dx2 <= 1; ++dx2)
+              neighbour = neighbour || ((dx2 != 0 || dy2 != 0) && significant(x + dx2, y + dy2));
           if (neighbour && sigprop.bit()) {
             state[i] = 2;
             out.mu[i] = 1;
@@ -406,7 +413,8 @@ std::vector<std::int32_t> random_block(std::mt19937& rng, int width, int height,
     const std::uint32_t m = top | (static_cast<std::uint32_t>(rng()) & (top - 1));
     v = negative(rng) ? -static_cast<std::int32_t>(m) : static_cast<std::int32_t>(m);
   }
-  const std::uint32_t peak = (std::uint32_t{1} << (planes - 1)) | (static_cast<std::uint32_t>(rng()) & ((std::uint32_t{1} << (planes - 1)) - 1));
+  const std::uint32_t peak = (std::uint32_t{1} << (planes - 1)) |
+                             (static_cast<std::uint32_t>(rng()) & ((std::uint32_t{1} << (planes - 1)) - 1));
   block[static_cast<std::size_t>(rng() % n)] = static_cast<std::int32_t>(peak);
   return block;
 }
@@ -452,7 +460,8 @@ void check_round_trip(const std::vector<std::int32_t>& block, int width, int hei
   const Decoded d = decode_cleanup(eb.data, width, height);
   ASSERT_EQ(d.mu.size(), block.size()) << where;
   for (std::size_t i = 0; i < block.size(); ++i) {
-    const std::uint32_t m = block[i] < 0 ? static_cast<std::uint32_t>(-static_cast<std::int64_t>(block[i])) : static_cast<std::uint32_t>(block[i]);
+    const std::uint32_t m = block[i] < 0 ? static_cast<std::uint32_t>(-static_cast<std::int64_t>(block[i]))
+                                         : static_cast<std::uint32_t>(block[i]);
     const std::uint32_t expected = m >> p;
     if (d.mu[i] != expected || (expected != 0 && d.negative[i] != (block[i] < 0 ? 1 : 0))) {
       ADD_FAILURE() << where << ": sample " << i << " (" << i % static_cast<std::size_t>(width) << ", "
@@ -471,9 +480,9 @@ void check_round_trip(const std::vector<std::int32_t>& block, int width, int hei
 // decrease must be what the model's reconstruction gives.
 void check_refinement(const std::vector<std::int32_t>& block, int width, int height, int planes, int p,
                       const std::string& where) {
-  const codec::t1::EncodedBlock eb = codec::ht::encode_ht_block(codec::ht::load_ht_block(block, width, height), 31, p,
-                                                                codec::t1::Distortion::Measured,
-                                                                codec::ht::HtPasses::CleanupAndRefinement);
+  const codec::t1::EncodedBlock eb =
+      codec::ht::encode_ht_block(codec::ht::load_ht_block(block, width, height), 31, p, codec::t1::Distortion::Measured,
+                                 codec::ht::HtPasses::CleanupAndRefinement);
   if (planes <= p) {
     EXPECT_TRUE(eb.passes.empty()) << where;
     return;
@@ -494,14 +503,16 @@ void check_refinement(const std::vector<std::int32_t>& block, int width, int hei
   const Decoded three = decode_refinement(cleanup, eb.data, l0, l2 - l0, l2 - l0, true, width, height);
   double before = 0, after_sigprop = 0, after_magref = 0;
   for (std::size_t i = 0; i < block.size(); ++i) {
-    const std::uint32_t m = block[i] < 0 ? static_cast<std::uint32_t>(-static_cast<std::int64_t>(block[i])) : static_cast<std::uint32_t>(block[i]);
+    const std::uint32_t m = block[i] < 0 ? static_cast<std::uint32_t>(-static_cast<std::int64_t>(block[i]))
+                                         : static_cast<std::uint32_t>(block[i]);
     const int neg = block[i] < 0 ? 1 : 0;
     const std::uint32_t exact = m >> (p - 1);
     const bool in_cleanup = cleanup.mu[i] != 0;
     // SigProp: new significance and sign exact where read; what it did not read stays 0.
     const std::uint32_t sp = in_cleanup ? 0 : two.mu[i];
     if (sp != 0 && (sp != exact || two.negative[i] != neg)) {
-      ADD_FAILURE() << where << ": sample " << i << " SigProp gives " << (two.negative[i] ? "-" : "") << sp << ", expected " << exact;
+      ADD_FAILURE() << where << ": sample " << i << " SigProp gives " << (two.negative[i] ? "-" : "") << sp
+                    << ", expected " << exact;
       return;
     }
     if (in_cleanup ? three.mu[i] != exact : three.mu[i] != two.mu[i]) {
@@ -557,7 +568,8 @@ TEST(HtBlock, EveryShapeAndBitPlaneCountDecodesExactly) {
   for (const auto& [w, h] : all_shapes())
     for (int planes = 0; planes <= 31; ++planes) {
       const auto block = random_block(rng, w, h, planes);
-      check_round_trip(block, w, h, planes, 0, std::to_string(w) + "x" + std::to_string(h) + ", " + std::to_string(planes) + " planes");
+      check_round_trip(block, w, h, planes, 0,
+                       std::to_string(w) + "x" + std::to_string(h) + ", " + std::to_string(planes) + " planes");
       if (HasFailure()) return;
     }
 }
@@ -570,7 +582,8 @@ TEST(HtBlock, CleanupOnAHigherPlaneCodesTheMagnitudesAboveIt) {
         if (p < 0 || p > 30) continue;
         const auto block = random_block(rng, w, h, planes);
         check_round_trip(block, w, h, planes, p,
-                         std::to_string(w) + "x" + std::to_string(h) + ", " + std::to_string(planes) + " planes, p " + std::to_string(p));
+                         std::to_string(w) + "x" + std::to_string(h) + ", " + std::to_string(planes) + " planes, p " +
+                             std::to_string(p));
         if (HasFailure()) return;
       }
 }
@@ -580,7 +593,9 @@ TEST(HtBlock, SparseAndDenseExtremes) {
   // in long zero runs (the MEL at its highest state), and a checkerboard.
   for (std::int32_t v : {1, -1, 2, 3, 1 << 20, -(1 << 30), 0x7FFFFFFF}) {
     std::vector<std::int32_t> full(4096, v);
-    check_round_trip(full, 64, 64, std::bit_width(static_cast<std::uint32_t>(v < 0 ? -static_cast<std::int64_t>(v) : v)), 0, "constant " + std::to_string(v));
+    check_round_trip(full, 64, 64,
+                     std::bit_width(static_cast<std::uint32_t>(v < 0 ? -static_cast<std::int64_t>(v) : v)), 0,
+                     "constant " + std::to_string(v));
   }
   std::vector<std::int32_t> lone(4096, 0);
   lone[4095] = -5;
@@ -621,14 +636,16 @@ TEST(HtBlock, RefinementPassesDecodeExactlyOnEveryShapeAndPlane) {
       const auto block = random_block(rng, w, h, planes);
       const int p = 1 + static_cast<int>(rng() % static_cast<unsigned>(planes));  // 1..planes: planes gives no pass
       check_refinement(block, w, h, planes, p,
-                       std::to_string(w) + "x" + std::to_string(h) + ", " + std::to_string(planes) + " planes, p " + std::to_string(p));
+                       std::to_string(w) + "x" + std::to_string(h) + ", " + std::to_string(planes) + " planes, p " +
+                           std::to_string(p));
       if (HasFailure()) return;
     }
   // Every cleanup plane of one block per shape family, dense and sparse.
   for (const auto& [w, h] : {std::pair{64, 64}, {5, 7}, {1024, 4}, {4, 1024}, {33, 31}})
     for (int p = 1; p <= 12; ++p) {
       const auto block = random_block(rng, w, h, 12);
-      check_refinement(block, w, h, 12, p, std::to_string(w) + "x" + std::to_string(h) + ", 12 planes, p " + std::to_string(p));
+      check_refinement(block, w, h, 12, p,
+                       std::to_string(w) + "x" + std::to_string(h) + ", 12 planes, p " + std::to_string(p));
       if (HasFailure()) return;
     }
 }

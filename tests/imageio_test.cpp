@@ -796,7 +796,8 @@ TEST_F(ImageIoTest, PackedPnmHasTheSamplesOfEveryKind) {
     std::string name, bytes;
     bool raster_in_file;
   };
-  const std::string raw8 = std::string("P6\n3 2\n255\n") + std::string("\x01\x02\x03\x04\x05\x06\x07\x08\x09\x0a\x0b\x0c\xfd\xfe\xff\x00\x80\x7f", 18);
+  const std::string raw8 = std::string("P6\n3 2\n255\n") +
+                           std::string("\x01\x02\x03\x04\x05\x06\x07\x08\x09\x0a\x0b\x0c\xfd\xfe\xff\x00\x80\x7f", 18);
   const std::string raw16 = std::string("P5\n2 2\n65535\n") + std::string("\x01\x02\xff\xfe\x00\x00\x80\x01", 8);
   const Case cases[] = {
       {"raw8.ppm", raw8, true},

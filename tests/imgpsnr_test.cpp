@@ -141,7 +141,8 @@ class ImgpsnrCli : public ::testing::Test {
 
   ProcessResult run(const std::string& args) {
     const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-    const std::string cmd = std::string("'") + IMGPSNR_PATH + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
+    const std::string cmd =
+        std::string("'") + IMGPSNR_PATH + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
     const int status = std::system(cmd.c_str());
     ProcessResult r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
@@ -174,7 +175,8 @@ TEST_F(ImgpsnrCli, PrintsTheHandComputedCase) {
   const ProcessResult j = run(ref + " " + test + " --json");
   ASSERT_EQ(j.exit_code, 0) << j.err;
   EXPECT_EQ(std::count(j.out.begin(), j.out.end(), '\n'), 1) << j.out;
-  EXPECT_NE(j.out.find("\"width\": 2, \"height\": 2, \"channels\": 3, \"bits\": 8, \"peak\": 255"), std::string::npos) << j.out;
+  EXPECT_NE(j.out.find("\"width\": 2, \"height\": 2, \"channels\": 3, \"bits\": 8, \"peak\": 255"), std::string::npos)
+      << j.out;
   EXPECT_NE(j.out.find("\"channel_db\": [\"inf\", 48.130804, 42.110204]"), std::string::npos) << j.out;
   EXPECT_NE(j.out.find("\"all_db\": 45.912316"), std::string::npos) << j.out;
 }
@@ -217,7 +219,8 @@ TEST_F(ImgpsnrCli, ErrorsAreOneLineWithExitOne) {
     EXPECT_EQ(r.err.rfind("imgpsnr: ", 0), 0u) << r.err;
   }
   const ProcessResult shape = run(ref + " " + wide);
-  EXPECT_NE(shape.err.find("reference is 2x2 with 1 channel, test is 4x1 with 1 channel"), std::string::npos) << shape.err;
+  EXPECT_NE(shape.err.find("reference is 2x2 with 1 channel, test is 4x1 with 1 channel"), std::string::npos)
+      << shape.err;
   // Usage errors are one line too (exit 2, as the project's other tools).
   const ProcessResult usage = run(ref);
   EXPECT_EQ(usage.exit_code, 2);

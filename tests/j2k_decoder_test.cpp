@@ -74,9 +74,11 @@ void expect_same_as_input(const codec::DecodedImage& out, const imageio::Image& 
     for (int y = 0; y < in.height; ++y)
       for (int x = 0; x < in.width; ++x) {
         const std::int32_t want = static_cast<std::int32_t>(in.at(x, y, c));
-        const std::int32_t got = comp.samples[static_cast<std::size_t>(y) * static_cast<std::size_t>(in.width) + static_cast<std::size_t>(x)];
+        const std::int32_t got = comp.samples[static_cast<std::size_t>(y) * static_cast<std::size_t>(in.width) +
+                                              static_cast<std::size_t>(x)];
         if (want != got && mismatches++ < 3)
-          ADD_FAILURE() << what << ": component " << c << " at (" << x << "," << y << "): " << got << ", input " << want;
+          ADD_FAILURE() << what << ": component " << c << " at (" << x << "," << y << "): " << got << ", input "
+                        << want;
       }
     EXPECT_EQ(mismatches, 0) << what << ": component " << c;
   }
@@ -95,7 +97,8 @@ TEST(J2kDecoderLossless, ImageKinds) {
   check_lossless(image(Pattern::Mix, 67, 45, 3, 8), lossless(), "RGB 8-bit");
   check_lossless(image(Pattern::ZonePlate, 40, 33, 4, 8), lossless(), "RGBA 8-bit");
   check_lossless(image(Pattern::Mix, 45, 38, 3, 16), lossless(), "RGB 16-bit");
-  for (int bits : {8, 12, 16}) check_lossless(image(Pattern::Mix, 45, 38, 1, bits, true), lossless(), "signed " + std::to_string(bits));
+  for (int bits : {8, 12, 16})
+    check_lossless(image(Pattern::Mix, 45, 38, 1, bits, true), lossless(), "signed " + std::to_string(bits));
   check_lossless(image(Pattern::Noise, 31, 17, 1, 1), lossless(), "1-bit");
   check_lossless(image(Pattern::Noise, 31, 17, 3, 5), lossless(), "5-bit RGB");
 }
@@ -208,7 +211,8 @@ Pgx read_pgx(const fs::path& path) {
     std::uint32_t v = 0;
     unsigned char b[4];
     in.read(reinterpret_cast<char*>(b), bytes);
-    for (int k = 0; k < bytes; ++k) v |= static_cast<std::uint32_t>(b[big ? k : bytes - 1 - k]) << (8 * (bytes - 1 - k));
+    for (int k = 0; k < bytes; ++k)
+      v |= static_cast<std::uint32_t>(b[big ? k : bytes - 1 - k]) << (8 * (bytes - 1 - k));
     std::int32_t s = static_cast<std::int32_t>(v);
     if (sign == "-" && bytes < 4 && (v >> (8 * bytes - 1))) s -= static_cast<std::int32_t>(1u << (8 * bytes));
     p.samples.push_back(s);
@@ -231,14 +235,16 @@ std::vector<Pgx> opj_decode(const ScratchDir& dir, const fs::path& stream, const
 
 // Our decode equals opj_decompress' sample for sample, or (max_difference 1) differs by at most
 // one where OpenJPEG's float 9/7 and ICT round differently from ours.
-void expect_like_opj(const codec::DecodedImage& ours, const std::vector<Pgx>& theirs, int max_difference, const std::string& what) {
+void expect_like_opj(const codec::DecodedImage& ours, const std::vector<Pgx>& theirs, int max_difference,
+                     const std::string& what) {
   ASSERT_EQ(ours.components.size(), theirs.size()) << what;
   for (std::size_t c = 0; c < theirs.size(); ++c) {
     const auto& a = ours.components[c];
     ASSERT_EQ(a.width, theirs[c].width) << what << " component " << c;
     ASSERT_EQ(a.height, theirs[c].height) << what << " component " << c;
     int worst = 0;
-    for (std::size_t i = 0; i < a.samples.size(); ++i) worst = std::max(worst, std::abs(a.samples[i] - theirs[c].samples[i]));
+    for (std::size_t i = 0; i < a.samples.size(); ++i)
+      worst = std::max(worst, std::abs(a.samples[i] - theirs[c].samples[i]));
     EXPECT_LE(worst, max_difference) << what << " component " << c;
   }
 }
@@ -246,7 +252,8 @@ void expect_like_opj(const codec::DecodedImage& ours, const std::vector<Pgx>& th
 class J2kDecoderVsOpenJpeg : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!have_tool("opj_decompress") || !have_tool("opj_compress")) GTEST_SKIP() << "opj_decompress/opj_compress not installed";
+    if (!have_tool("opj_decompress") || !have_tool("opj_compress"))
+      GTEST_SKIP() << "opj_decompress/opj_compress not installed";
   }
   ScratchDir dir{"j2k_decoder_test"};
 };
@@ -261,7 +268,9 @@ TEST_F(J2kDecoderVsOpenJpeg, OurLossyStreams) {
   cases.push_back({"default", lossy()});
   {
     auto p = lossy();
-    p.layers = {{codec::LayerTarget::Kind::Bytes, 900}, {codec::LayerTarget::Kind::Bytes, 2500}, {codec::LayerTarget::Kind::Bytes, 6000}};
+    p.layers = {{codec::LayerTarget::Kind::Bytes, 900},
+                {codec::LayerTarget::Kind::Bytes, 2500},
+                {codec::LayerTarget::Kind::Bytes, 6000}};
     cases.push_back({"three layers", p});
   }
   for (int order = 0; order < 5; ++order) {
@@ -297,7 +306,8 @@ TEST_F(J2kDecoderVsOpenJpeg, OurLossyStreams) {
     const auto grey = image(Pattern::ZonePlate, 61, 47, 1, 12, is_signed);
     const auto stream = encode(grey, lossy());
     write_bytes(dir / "ours.j2k", stream);
-    expect_like_opj(codec::decode(stream, options()), opj_decode(dir, dir / "ours.j2k"), 1, is_signed ? "signed 12-bit" : "12-bit");
+    expect_like_opj(codec::decode(stream, options()), opj_decode(dir, dir / "ours.j2k"), 1,
+                    is_signed ? "signed 12-bit" : "12-bit");
   }
 }
 
@@ -328,10 +338,12 @@ TEST_F(J2kDecoderVsOpenJpeg, OpenJpegStreams) {
   for (const Case& c : cases) {
     const std::string what = c.input + " " + c.options;
     SCOPED_TRACE(what);
-    ASSERT_TRUE(test_support::run_quietly("opj_compress -i '" + (dir / c.input).string() + "' -o '" + (dir / "opj.j2k").string() + "' " + c.options))
+    ASSERT_TRUE(test_support::run_quietly("opj_compress -i '" + (dir / c.input).string() + "' -o '" +
+                                          (dir / "opj.j2k").string() + "' " + c.options))
         << "opj_compress " << what;
     const bool irreversible = c.options.find("-I") != std::string::npos;
-    expect_like_opj(codec::decode_file((dir / "opj.j2k").string(), options()), opj_decode(dir, dir / "opj.j2k"), irreversible ? 1 : 0, what);
+    expect_like_opj(codec::decode_file((dir / "opj.j2k").string(), options()), opj_decode(dir, dir / "opj.j2k"),
+                    irreversible ? 1 : 0, what);
   }
 }
 
@@ -343,9 +355,12 @@ void expect_tool_streams_like_opj(const ScratchDir& dir, const std::string& tool
     const std::string what = tool + " " + opts;
     SCOPED_TRACE(what);
     fs::remove(dir / "tool.j2k");
-    ASSERT_TRUE(test_support::run_quietly(tool + " -i '" + input.string() + "' -o '" + (dir / "tool.j2k").string() + "' " + opts)) << what;
+    ASSERT_TRUE(test_support::run_quietly(tool + " -i '" + input.string() + "' -o '" + (dir / "tool.j2k").string() +
+                                          "' " + opts))
+        << what;
     const int tolerance = opts.find("-I") != std::string::npos ? 1 : 0;
-    expect_like_opj(codec::decode_file((dir / "tool.j2k").string(), options()), opj_decode(dir, dir / "tool.j2k"), tolerance, what);
+    expect_like_opj(codec::decode_file((dir / "tool.j2k").string(), options()), opj_decode(dir, dir / "tool.j2k"),
+                    tolerance, what);
   }
 }
 
@@ -367,9 +382,10 @@ TEST_F(J2kDecoderVsOpenJpeg, OpenJpegAndGrokStreamsWithMoreOptions) {
       for (int x = 0; x < 128 / dx; ++x) raw.push_back(static_cast<std::uint8_t>(planes.at(x * dx, y * dy, 0)));
   write_bytes(dir / "in.raw", raw);
   const std::string f = "-F 128,76,4,8,u@1x1:2x2:2x1:1x2 ";
-  expect_tool_streams_like_opj(dir, "opj_compress", dir / "in.raw",
-                               {f + "-r 10", f + "-t 64,48 -p PCRL -r 20,5", f + "-I -p RPCL -c [32,32],[16,16] -r 15",
-                                f + "-p CPRL -M 3 -r 15,5 -n 4", f + "-POC T1=0,0,1,6,4,CPRL/T1=0,0,2,6,4,RPCL -r 20,10"});
+  expect_tool_streams_like_opj(
+      dir, "opj_compress", dir / "in.raw",
+      {f + "-r 10", f + "-t 64,48 -p PCRL -r 20,5", f + "-I -p RPCL -c [32,32],[16,16] -r 15",
+       f + "-p CPRL -M 3 -r 15,5 -n 4", f + "-POC T1=0,0,1,6,4,CPRL/T1=0,0,2,6,4,RPCL -r 20,10"});
 
   if (!have_tool("grk_compress")) {
     std::printf("grk_compress not installed: its streams are not checked\n");
@@ -378,27 +394,31 @@ TEST_F(J2kDecoderVsOpenJpeg, OpenJpegAndGrokStreamsWithMoreOptions) {
   // Grok's encoder fails on some small images and on some option combinations (tiles with PLT,
   // with precincts and mode switches); these run.
   imageio::write_image((dir / "big.ppm").string(), image(Pattern::Mix, 256, 192, 3, 8));
-  expect_tool_streams_like_opj(dir, "grk_compress", dir / "big.ppm",
-                               {"-P T0=0,0,1,6,3,CPRL/T0=0,0,2,6,3,RLCP -r 20,10", "-t 128,96 -r 20,10", "-c [32,32],[16,16] -p PCRL",
-                                "-M 63 -r 30,10", "-p RPCL -L -n 4", "-t 100,80 -I -S -E", "-b 16,16 -p CPRL -M 9", "-I -r 30,10,5"});
+  expect_tool_streams_like_opj(
+      dir, "grk_compress", dir / "big.ppm",
+      {"-P T0=0,0,1,6,3,CPRL/T0=0,0,2,6,3,RLCP -r 20,10", "-t 128,96 -r 20,10", "-c [32,32],[16,16] -p PCRL",
+       "-M 63 -r 30,10", "-p RPCL -L -n 4", "-t 100,80 -I -S -E", "-b 16,16 -p CPRL -M 9", "-I -r 30,10,5"});
 }
 
 TEST_F(J2kDecoderVsOpenJpeg, ReduceAndLayersMatchOpjDecompress) {
   imageio::write_image((dir / "in.ppm").string(), image(Pattern::Mix, 131, 77, 3, 8));
   for (const std::string opts : {"-r 40,20,10,5", "-I -r 40,10 -t 64,48", "-r 30,10 -p RPCL -c [32,32],[16,16]"}) {
-    ASSERT_TRUE(test_support::run_quietly("opj_compress -i '" + (dir / "in.ppm").string() + "' -o '" + (dir / "opj.j2k").string() + "' " + opts));
+    ASSERT_TRUE(test_support::run_quietly("opj_compress -i '" + (dir / "in.ppm").string() + "' -o '" +
+                                          (dir / "opj.j2k").string() + "' " + opts));
     const int tolerance = opts.find("-I") != std::string::npos ? 1 : 0;
     for (int reduce = 0; reduce <= 3; ++reduce) {
       auto o = options();
       o.reduce = reduce;
-      expect_like_opj(codec::decode_file((dir / "opj.j2k").string(), o), opj_decode(dir, dir / "opj.j2k", "-r " + std::to_string(reduce)),
-                      tolerance, opts + " reduce " + std::to_string(reduce));
+      expect_like_opj(codec::decode_file((dir / "opj.j2k").string(), o),
+                      opj_decode(dir, dir / "opj.j2k", "-r " + std::to_string(reduce)), tolerance,
+                      opts + " reduce " + std::to_string(reduce));
     }
     for (int layers = 1; layers <= 2; ++layers) {
       auto o = options();
       o.max_layers = layers;
-      expect_like_opj(codec::decode_file((dir / "opj.j2k").string(), o), opj_decode(dir, dir / "opj.j2k", "-l " + std::to_string(layers)),
-                      tolerance, opts + " layers " + std::to_string(layers));
+      expect_like_opj(codec::decode_file((dir / "opj.j2k").string(), o),
+                      opj_decode(dir, dir / "opj.j2k", "-l " + std::to_string(layers)), tolerance,
+                      opts + " layers " + std::to_string(layers));
     }
   }
 }
@@ -413,23 +433,26 @@ TEST_F(J2kDecoderVsOpenJpeg, RegionsAndComponentsMatchOpjDecompress) {
     std::string options;
     bool select;
   };
-  const Case cases[] = {{"-t 64,48 -c [32,32],[16,16] -p RPCL -n 4", false}, {"-I -n 4 -r 10", false}, {"-mct 0 -n 3 -b 16,16", true}};
+  const Case cases[] = {
+      {"-t 64,48 -c [32,32],[16,16] -p RPCL -n 4", false}, {"-I -n 4 -r 10", false}, {"-mct 0 -n 3 -b 16,16", true}};
   const codec::DecodeRegion regions[] = {{37, 11, 91, 60}, {0, 0, 17, 9}, {100, 40, 131, 77}};
   for (const Case& c : cases) {
-    ASSERT_TRUE(test_support::run_quietly("opj_compress -i '" + (dir / "in.ppm").string() + "' -o '" + (dir / "opj.j2k").string() + "' " + c.options));
+    ASSERT_TRUE(test_support::run_quietly("opj_compress -i '" + (dir / "in.ppm").string() + "' -o '" +
+                                          (dir / "opj.j2k").string() + "' " + c.options));
     const int tolerance = c.options.find("-I") != std::string::npos ? 1 : 0;
     for (const codec::DecodeRegion& r : regions)
       for (int reduce : {0, 1}) {
         auto o = options();
         o.reduce = reduce;
         o.region = r;
-        std::string opj = "-r " + std::to_string(reduce) + " -d " + std::to_string(r.x0) + "," + std::to_string(r.y0) + "," + std::to_string(r.x1) +
-                          "," + std::to_string(r.y1);
+        std::string opj = "-r " + std::to_string(reduce) + " -d " + std::to_string(r.x0) + "," + std::to_string(r.y0) +
+                          "," + std::to_string(r.x1) + "," + std::to_string(r.y1);
         if (c.select) {
           o.components = {2, 0};
           opj += " -c 2,0";
         }
-        expect_like_opj(codec::decode_file((dir / "opj.j2k").string(), o), opj_decode(dir, dir / "opj.j2k", opj), tolerance, c.options + " " + opj);
+        expect_like_opj(codec::decode_file((dir / "opj.j2k").string(), o), opj_decode(dir, dir / "opj.j2k", opj),
+                        tolerance, c.options + " " + opj);
       }
   }
 }
@@ -463,16 +486,19 @@ void insert_after(std::vector<std::uint8_t>& s, std::size_t segment, const std::
 
 std::vector<std::uint8_t> with_tile_part_segment(std::vector<std::uint8_t> s, const std::vector<std::uint8_t>& seg) {
   const std::size_t sot = segment_at(s, 0xFF90);
-  std::uint32_t psot = (std::uint32_t{s[sot + 6]} << 24) | (std::uint32_t{s[sot + 7]} << 16) | (std::uint32_t{s[sot + 8]} << 8) | s[sot + 9];
+  std::uint32_t psot = (std::uint32_t{s[sot + 6]} << 24) | (std::uint32_t{s[sot + 7]} << 16) |
+                       (std::uint32_t{s[sot + 8]} << 8) | s[sot + 9];
   psot += static_cast<std::uint32_t>(seg.size());
-  for (int b = 0; b < 4; ++b) s[sot + 6 + static_cast<std::size_t>(b)] = static_cast<std::uint8_t>(psot >> (24 - 8 * b));
+  for (int b = 0; b < 4; ++b)
+    s[sot + 6 + static_cast<std::size_t>(b)] = static_cast<std::uint8_t>(psot >> (24 - 8 * b));
   insert_after(s, sot, seg);
   return s;
 }
 
 void expect_same_samples(const codec::DecodedImage& a, const codec::DecodedImage& b, const std::string& what) {
   ASSERT_EQ(a.components.size(), b.components.size()) << what;
-  for (std::size_t c = 0; c < a.components.size(); ++c) EXPECT_EQ(a.components[c].samples, b.components[c].samples) << what << " component " << c;
+  for (std::size_t c = 0; c < a.components.size(); ++c)
+    EXPECT_EQ(a.components[c].samples, b.components[c].samples) << what << " component " << c;
 }
 
 TEST(J2kDecoderProgressionChanges, PocInMainAndTilePartHeadersGivesTheSentOrder) {
@@ -481,7 +507,9 @@ TEST(J2kDecoderProgressionChanges, PocInMainAndTilePartHeadersGivesTheSentOrder)
   auto p = lossy();
   p.order = codec::Progression::RLCP;
   p.levels = 4;
-  p.layers = {{codec::LayerTarget::Kind::Bytes, 900}, {codec::LayerTarget::Kind::Bytes, 2500}, {codec::LayerTarget::Kind::Bytes, 6000}};
+  p.layers = {{codec::LayerTarget::Kind::Bytes, 900},
+              {codec::LayerTarget::Kind::Bytes, 2500},
+              {codec::LayerTarget::Kind::Bytes, 6000}};
   const auto original = encode(image(Pattern::Mix, 70, 53, 3, 8), p);
   const codec::DecodedImage want = codec::decode(original, options());
   auto lrcp = original;
@@ -489,7 +517,8 @@ TEST(J2kDecoderProgressionChanges, PocInMainAndTilePartHeadersGivesTheSentOrder)
   bool differs = false;
   try {
     const auto wrong = codec::decode(lrcp, options());
-    for (std::size_t c = 0; c < want.components.size(); ++c) differs |= wrong.components[c].samples != want.components[c].samples;
+    for (std::size_t c = 0; c < want.components.size(); ++c)
+      differs |= wrong.components[c].samples != want.components[c].samples;
   } catch (const codec::DecodeError&) {
     differs = true;
   }
@@ -539,12 +568,14 @@ codec::DecodedComponent cropped(const codec::DecodedComponent& full, const codec
   out.samples.clear();
   for (int y = 0; y < out.height; ++y)
     for (int x = 0; x < out.width; ++x)
-      out.samples.push_back(full.samples[static_cast<std::size_t>(out.y0 - full.y0 + y) * static_cast<std::size_t>(full.width) +
-                                         static_cast<std::size_t>(out.x0 - full.x0 + x)]);
+      out.samples.push_back(
+          full.samples[static_cast<std::size_t>(out.y0 - full.y0 + y) * static_cast<std::size_t>(full.width) +
+                       static_cast<std::size_t>(out.x0 - full.x0 + x)]);
   return out;
 }
 
-void expect_same_component(const codec::DecodedComponent& got, const codec::DecodedComponent& want, const std::string& what) {
+void expect_same_component(const codec::DecodedComponent& got, const codec::DecodedComponent& want,
+                           const std::string& what) {
   EXPECT_EQ(got.x0, want.x0) << what;
   EXPECT_EQ(got.y0, want.y0) << what;
   ASSERT_EQ(got.width, want.width) << what;
@@ -568,7 +599,8 @@ TEST(J2kDecoderWindow, RegionsEqualCropsOfTheWholeDecode) {
     streams.emplace_back("9/7, 16x16 code-blocks", encode(img, p));
   }
   const codec::DecodeRegion regions[] = {
-      {0, 0, 1000, 1000}, {37, 11, 91, 60}, {0, 0, 1, 1}, {130, 76, 131, 77}, {47, 39, 49, 41}, {100, 0, 131, 20}, {60, 30, 61, 77},
+      {0, 0, 1000, 1000}, {37, 11, 91, 60},  {0, 0, 1, 1},     {130, 76, 131, 77},
+      {47, 39, 49, 41},   {100, 0, 131, 20}, {60, 30, 61, 77},
   };
   for (const auto& [name, stream] : streams)
     for (int reduce : {0, 1, 2}) {
@@ -576,8 +608,8 @@ TEST(J2kDecoderWindow, RegionsEqualCropsOfTheWholeDecode) {
       o.reduce = reduce;
       const codec::DecodedImage full = codec::decode(stream, o);
       for (const codec::DecodeRegion& r : regions) {
-        const std::string what = name + " reduce " + std::to_string(reduce) + " region " + std::to_string(r.x0) + "," + std::to_string(r.y0) +
-                                 "-" + std::to_string(r.x1) + "," + std::to_string(r.y1);
+        const std::string what = name + " reduce " + std::to_string(reduce) + " region " + std::to_string(r.x0) + "," +
+                                 std::to_string(r.y0) + "-" + std::to_string(r.x1) + "," + std::to_string(r.y1);
         auto ro = o;
         ro.region = r;
         codec::DecodedImage part;
@@ -590,7 +622,8 @@ TEST(J2kDecoderWindow, RegionsEqualCropsOfTheWholeDecode) {
         }
         ASSERT_EQ(part.components.size(), full.components.size()) << what;
         for (std::size_t c = 0; c < full.components.size(); ++c)
-          expect_same_component(part.components[c], cropped(full.components[c], r, reduce), what + " component " + std::to_string(c));
+          expect_same_component(part.components[c], cropped(full.components[c], r, reduce),
+                                what + " component " + std::to_string(c));
       }
     }
   // A window outside the image is refused, naming the region.
@@ -652,8 +685,8 @@ TEST(J2kDecoderConformance, ClassOneStreamsWithinLimits) {
       {"p0_09", 0, {0}, {0}},
       {"p0_10", 0, {0, 0, 0}, {0, 0, 0}},
       {"p1_01", 0, {0}, {0}},
-      {"p1_02", 0, {5, 4, 6}, {0.765, 0.616, 1.051}},  // PPT in the tile-part header
-      {"p1_03", 0, {2, 2, 1, 0}, {0.3, 0.21, 0.2, 0}},        // PPM in the main header
+      {"p1_02", 0, {5, 4, 6}, {0.765, 0.616, 1.051}},   // PPT in the tile-part header
+      {"p1_03", 0, {2, 2, 1, 0}, {0.3, 0.21, 0.2, 0}},  // PPM in the main header
       {"p1_04", 0, {624}, {3080}},
   };
   for (const ConformanceCase& c : cases) {
@@ -698,8 +731,10 @@ TEST(J2kDecoderConformance, Jp2FilesMatchTheirTiffReferences) {
   };
   for (const Case& c : {Case{1, 3, 0, 0.0}, Case{2, 3, 1, 0.05}, Case{3, 3, 1, 0.05}, Case{4, 1, 0, 0.0}}) {
     SCOPED_TRACE("file" + std::to_string(c.number));
-    const codec::DecodedImage img = codec::decode_file((root / "streams" / ("file" + std::to_string(c.number) + ".jp2")).string(), options());
-    const imageio::Image ref = imageio::read_image((root / "reference" / ("jp2_" + std::to_string(c.number) + ".tif")).string());
+    const codec::DecodedImage img =
+        codec::decode_file((root / "streams" / ("file" + std::to_string(c.number) + ".jp2")).string(), options());
+    const imageio::Image ref =
+        imageio::read_image((root / "reference" / ("jp2_" + std::to_string(c.number) + ".tif")).string());
     ASSERT_EQ(static_cast<int>(img.components.size()), c.channels);
     ASSERT_EQ(ref.channels, 3);
     EXPECT_EQ(img.jp2_colour_space, c.channels == 1 ? 17 : 16);
@@ -711,7 +746,8 @@ TEST(J2kDecoderConformance, Jp2FilesMatchTheirTiffReferences) {
       double sum = 0;
       for (int y = 0; y < ref.height; ++y)
         for (int x = 0; x < ref.width; ++x) {
-          const int d = std::abs(got.samples[static_cast<std::size_t>(y) * static_cast<std::size_t>(got.width) + static_cast<std::size_t>(x)] -
+          const int d = std::abs(got.samples[static_cast<std::size_t>(y) * static_cast<std::size_t>(got.width) +
+                                             static_cast<std::size_t>(x)] -
                                  static_cast<int>(ref.at(x, y, k)));
           peak = std::max(peak, d);
           sum += static_cast<double>(d) * d;
@@ -735,9 +771,11 @@ std::vector<std::uint8_t> box(const char* type, const std::vector<std::uint8_t>&
   return out;
 }
 
-std::vector<std::uint8_t> jp2_file(const std::vector<std::uint8_t>& codestream, const std::vector<std::vector<std::uint8_t>>& header_boxes) {
+std::vector<std::uint8_t> jp2_file(const std::vector<std::uint8_t>& codestream,
+                                   const std::vector<std::vector<std::uint8_t>>& header_boxes) {
   std::vector<std::uint8_t> out{0, 0, 0, 0x0C, 'j', 'P', ' ', ' ', 0x0D, 0x0A, 0x87, 0x0A};
-  for (const auto& b : {box("ftyp", {'j', 'p', '2', ' ', 0, 0, 0, 0, 'j', 'p', '2', ' '})}) out.insert(out.end(), b.begin(), b.end());
+  for (const auto& b : {box("ftyp", {'j', 'p', '2', ' ', 0, 0, 0, 0, 'j', 'p', '2', ' '})})
+    out.insert(out.end(), b.begin(), b.end());
   std::vector<std::uint8_t> header;
   for (const auto& b : header_boxes) header.insert(header.end(), b.begin(), b.end());
   for (const auto& b : {box("jp2h", header), box("jp2c", codestream)}) out.insert(out.end(), b.begin(), b.end());
@@ -780,16 +818,22 @@ TEST(J2kDecoderJp2, PaletteAndChannelDefinitionsAreApplied) {
     int mismatches = 0;
     for (int y = 0; y < small.height; ++y)
       for (int x = 0; x < small.width; ++x)
-        mismatches += comp.samples[static_cast<std::size_t>(y * small.width + x)] != entry(static_cast<int>(small.at(x, y, 0)), columns[k]);
+        mismatches += comp.samples[static_cast<std::size_t>(y * small.width + x)] !=
+                      entry(static_cast<int>(small.at(x, y, 0)), columns[k]);
     EXPECT_EQ(mismatches, 0) << "channel " << k;
   }
 
   // Boxes that name what the image lacks are refused.
   const std::vector<std::uint8_t> bad_cmap{0, 4, 1, 0};  // component 4 of 1
-  EXPECT_THROW((void)codec::decode(jp2_file(stream, {box("colr", colr), box("pclr", pclr), box("cmap", bad_cmap)}), options()), codec::DecodeError);
+  EXPECT_THROW(
+      (void)codec::decode(jp2_file(stream, {box("colr", colr), box("pclr", pclr), box("cmap", bad_cmap)}), options()),
+      codec::DecodeError);
   const std::vector<std::uint8_t> bad_column{0, 0, 1, 7};  // palette column 7 of 3
-  EXPECT_THROW((void)codec::decode(jp2_file(stream, {box("colr", colr), box("pclr", pclr), box("cmap", bad_column)}), options()), codec::DecodeError);
-  EXPECT_THROW((void)codec::decode(jp2_file(stream, {box("colr", colr), box("pclr", pclr)}), options()), codec::DecodeError);
+  EXPECT_THROW(
+      (void)codec::decode(jp2_file(stream, {box("colr", colr), box("pclr", pclr), box("cmap", bad_column)}), options()),
+      codec::DecodeError);
+  EXPECT_THROW((void)codec::decode(jp2_file(stream, {box("colr", colr), box("pclr", pclr)}), options()),
+               codec::DecodeError);
 }
 
 // ---- Robustness: truncated and corrupted streams ----
@@ -829,7 +873,8 @@ TEST(J2kDecoderRobustness, TruncatedStreamsDecodeWhatIsThere) {
       decode_or_refuse(std::vector<std::uint8_t>(stream.begin(), stream.begin() + static_cast<std::ptrdiff_t>(len)));
     }
     // A stream cut inside its tile data still yields an image, with a warning.
-    const std::vector<std::uint8_t> cut(stream.begin(), stream.begin() + static_cast<std::ptrdiff_t>(stream.size() * 3 / 4));
+    const std::vector<std::uint8_t> cut(stream.begin(),
+                                        stream.begin() + static_cast<std::ptrdiff_t>(stream.size() * 3 / 4));
     const auto img = codec::decode(cut, options());
     EXPECT_FALSE(img.warnings.empty());
     EXPECT_EQ(img.components.size(), 3u);
@@ -843,7 +888,8 @@ TEST(J2kDecoderRobustness, CorruptedStreamsNeverCrash) {
       std::vector<std::uint8_t> bytes = stream;
       const int flips = 1 + trial % 4;
       for (int f = 0; f < flips; ++f) {
-        const std::uint64_t r = testimages::splitmix64_at(static_cast<std::uint64_t>(run), static_cast<std::uint64_t>(f));
+        const std::uint64_t r =
+            testimages::splitmix64_at(static_cast<std::uint64_t>(run), static_cast<std::uint64_t>(f));
         // Headers are where the lengths and counts live: hit them more often.
         const std::size_t span = (trial % 2) ? bytes.size() : std::min<std::size_t>(bytes.size(), 120);
         bytes[static_cast<std::size_t>(r % span)] ^= static_cast<std::uint8_t>(1u << ((r >> 32) % 8));
@@ -882,7 +928,8 @@ TEST(J2kDecoderRobustness, CorruptedPocAndPackedHeadersNeverCrash) {
     for (int trial = 0; trial < 60; ++trial, ++run) {
       std::vector<std::uint8_t> bytes = stream;
       for (int f = 0; f < 1 + trial % 3; ++f) {
-        const std::uint64_t r = testimages::splitmix64_at(static_cast<std::uint64_t>(run) + 7777, static_cast<std::uint64_t>(f));
+        const std::uint64_t r =
+            testimages::splitmix64_at(static_cast<std::uint64_t>(run) + 7777, static_cast<std::uint64_t>(f));
         bytes[static_cast<std::size_t>(r % header_span)] ^= static_cast<std::uint8_t>(1u << ((r >> 32) % 8));
       }
       SCOPED_TRACE(std::string(name) + " trial " + std::to_string(trial));
@@ -890,7 +937,8 @@ TEST(J2kDecoderRobustness, CorruptedPocAndPackedHeadersNeverCrash) {
     }
     for (std::size_t len = 0; len < header_span; len += 97) {
       SCOPED_TRACE(std::string(name) + " truncated to " + std::to_string(len));
-      decode_or_refuse_reduced(std::vector<std::uint8_t>(stream.begin(), stream.begin() + static_cast<std::ptrdiff_t>(len)));
+      decode_or_refuse_reduced(
+          std::vector<std::uint8_t>(stream.begin(), stream.begin() + static_cast<std::ptrdiff_t>(len)));
     }
   }
 }

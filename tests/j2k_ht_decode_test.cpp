@@ -73,7 +73,8 @@ int max_difference(const codec::DecodedImage& ours, const imageio::Image& theirs
     for (int y = 0; y < theirs.height; ++y)
       for (int x = 0; x < theirs.width; ++x) {
         const auto want = static_cast<std::int64_t>(theirs.at(x, y, c));
-        const std::int64_t got = comp.samples[static_cast<std::size_t>(y) * static_cast<std::size_t>(comp.width) + static_cast<std::size_t>(x)];
+        const std::int64_t got = comp.samples[static_cast<std::size_t>(y) * static_cast<std::size_t>(comp.width) +
+                                              static_cast<std::size_t>(x)];
         worst = std::max(worst, static_cast<int>(std::min<std::int64_t>(std::abs(want - got), 1 << 30)));
       }
   }
@@ -99,7 +100,8 @@ TEST(J2kHtDecode, OurLosslessImageKinds) {
   check_lossless(image(Pattern::Mix, 67, 45, 3, 8), ht(), "RGB 8-bit");
   check_lossless(image(Pattern::ZonePlate, 40, 33, 4, 8), ht(), "RGBA 8-bit");
   check_lossless(image(Pattern::Mix, 45, 38, 3, 16), ht(), "RGB 16-bit");
-  for (int bits : {8, 12, 16}) check_lossless(image(Pattern::Mix, 45, 38, 1, bits, true), ht(), "signed " + std::to_string(bits));
+  for (int bits : {8, 12, 16})
+    check_lossless(image(Pattern::Mix, 45, 38, 1, bits, true), ht(), "signed " + std::to_string(bits));
   check_lossless(image(Pattern::Noise, 31, 17, 1, 1), ht(), "1-bit");
   check_lossless(image(Pattern::Noise, 31, 17, 2, 5), ht(), "5-bit, 2 components");
   check_lossless(image(Pattern::Noise, 64, 64, 1, 16), ht(), "16-bit noise (large U-VLC residuals)");
@@ -152,7 +154,8 @@ std::vector<std::uint8_t> read_file(const fs::path& p) {
 }
 
 TEST(J2kHtDecode, OpenJphStreamsDecodeAsOjphExpandDecodesThem) {
-  if (!have_tool("ojph_compress") || !have_tool("ojph_expand")) GTEST_SKIP() << "ojph_compress/ojph_expand are not installed";
+  if (!have_tool("ojph_compress") || !have_tool("ojph_expand"))
+    GTEST_SKIP() << "ojph_compress/ojph_expand are not installed";
   struct Case {
     std::string options;
     bool lossless;
@@ -176,7 +179,8 @@ TEST(J2kHtDecode, OpenJphStreamsDecodeAsOjphExpandDecodesThem) {
       const std::string what = std::to_string(channels) + " channel(s), ojph_compress " + c.options;
       SCOPED_TRACE(what);
       const fs::path stream = s / "ojph.j2c";
-      ASSERT_TRUE(test_support::run_quietly("ojph_compress -i '" + input.string() + "' -o '" + stream.string() + "' " + c.options))
+      ASSERT_TRUE(test_support::run_quietly("ojph_compress -i '" + input.string() + "' -o '" + stream.string() + "' " +
+                                            c.options))
           << what;
       const imageio::Image theirs =
           test_support::decode_with("ojph_expand", stream, s / (channels == 1 ? "ref.pgm" : "ref.ppm"));
@@ -191,19 +195,22 @@ TEST(J2kHtDecode, OpenJphStreamsDecodeAsOjphExpandDecodesThem) {
 }
 
 TEST(J2kHtDecode, OpenJph16BitStreams) {
-  if (!have_tool("ojph_compress") || !have_tool("ojph_expand")) GTEST_SKIP() << "ojph_compress/ojph_expand are not installed";
+  if (!have_tool("ojph_compress") || !have_tool("ojph_expand"))
+    GTEST_SKIP() << "ojph_compress/ojph_expand are not installed";
   const auto img = image(Pattern::Mix, 97, 61, 1, 16);
   ScratchDir s;
   const fs::path input = write_input(s, img);
   const fs::path stream = s / "ojph16.j2c";
-  ASSERT_TRUE(test_support::run_quietly("ojph_compress -i '" + input.string() + "' -o '" + stream.string() + "' -reversible true"));
+  ASSERT_TRUE(test_support::run_quietly("ojph_compress -i '" + input.string() + "' -o '" + stream.string() +
+                                        "' -reversible true"));
   const codec::DecodedImage ours = decode(read_file(stream));
   EXPECT_EQ(max_difference(ours, img, "16-bit"), 0);
   EXPECT_EQ(max_difference(ours, test_support::decode_with("ojph_expand", stream, s / "ref16.pgm"), "16-bit"), 0);
 }
 
 TEST(J2kHtDecode, GrokHtStreams) {
-  if (!have_tool("grk_compress") || !have_tool("opj_decompress")) GTEST_SKIP() << "grk_compress/opj_decompress are not installed";
+  if (!have_tool("grk_compress") || !have_tool("opj_decompress"))
+    GTEST_SKIP() << "grk_compress/opj_decompress are not installed";
   const auto img = image(Pattern::Mix, 173, 131, 3, 8);
   ScratchDir s;
   const fs::path input = write_input(s, img);
@@ -211,20 +218,24 @@ TEST(J2kHtDecode, GrokHtStreams) {
     std::string options;
     bool lossless;
   };
-  const Case cases[] = {{"-M 64", true}, {"-M 64 -b 32,32 -p RPCL -c [64,64],[32,32]", true}, {"-M 64 -I -r 20", false},
+  const Case cases[] = {{"-M 64", true},
+                        {"-M 64 -b 32,32 -p RPCL -c [64,64],[32,32]", true},
+                        {"-M 64 -I -r 20", false},
                         {"-M 64 -I -q 40", false}};
   for (const Case& c : cases) {
     const std::string what = "grk_compress " + c.options;
     SCOPED_TRACE(what);
     const fs::path stream = s / "grk.j2k";
-    ASSERT_TRUE(test_support::run_quietly("grk_compress -i '" + input.string() + "' -o '" + stream.string() + "' " + c.options))
+    ASSERT_TRUE(
+        test_support::run_quietly("grk_compress -i '" + input.string() + "' -o '" + stream.string() + "' " + c.options))
         << what;
     const codec::DecodedImage ours = decode(read_file(stream));
     EXPECT_TRUE(ours.warnings.empty()) << what;
     if (c.lossless) {
       EXPECT_EQ(max_difference(ours, img, what), 0) << what;
     }
-    EXPECT_LE(max_difference(ours, test_support::decode_with("opj_decompress", stream, s / "opj.png"), what), c.lossless ? 0 : 1)
+    EXPECT_LE(max_difference(ours, test_support::decode_with("opj_decompress", stream, s / "opj.png"), what),
+              c.lossless ? 0 : 1)
         << what;
   }
 }
@@ -252,7 +263,8 @@ TEST(J2kHtDecode, OurLossyStreamsDecodeLikeOpjDecompress) {
     test_support::write_bytes(s / "ours.j2k", stream);
     const codec::DecodedImage ours = decode(stream);
     EXPECT_TRUE(ours.warnings.empty()) << what;
-    EXPECT_LE(max_difference(ours, test_support::decode_with("opj_decompress", s / "ours.j2k", s / "opj.png"), what), 1) << what;
+    EXPECT_LE(max_difference(ours, test_support::decode_with("opj_decompress", s / "ours.j2k", s / "opj.png"), what), 1)
+        << what;
   }
 }
 
@@ -262,9 +274,9 @@ TEST(J2kHtDecode, OurLossyStreamsDecodeLikeOpjDecompress) {
 // then the JP2 header superbox and the codestream box, as in JP2.
 void expect_jph_boxes(const std::vector<std::uint8_t>& f) {
   ASSERT_GT(f.size(), 40u);
-  const std::vector<std::uint8_t> signature_and_ftyp{0, 0, 0, 0x0C, 'j', 'P', ' ', ' ', 0x0D, 0x0A, 0x87, 0x0A,
-                                                     0, 0, 0, 0x14, 'f', 't', 'y', 'p', 'j', 'p', 'h', ' ',
-                                                     0, 0, 0, 0, 'j', 'p', 'h', ' '};
+  const std::vector<std::uint8_t> signature_and_ftyp{0,    0,   0, 0x0C, 'j',  'P', ' ', ' ', 0x0D, 0x0A, 0x87,
+                                                     0x0A, 0,   0, 0,    0x14, 'f', 't', 'y', 'p',  'j',  'p',
+                                                     'h',  ' ', 0, 0,    0,    0,   'j', 'p', 'h',  ' '};
   EXPECT_EQ(std::vector<std::uint8_t>(f.begin(), f.begin() + 32), signature_and_ftyp);
   EXPECT_EQ(std::string(f.begin() + 36, f.begin() + 40), "jp2h");
 }
@@ -328,10 +340,12 @@ TEST(J2kHtDecode, TruncatedAndCorruptedHtStreamsNeverCrash) {
     for (int trial = 0; trial < 300; ++trial) {
       std::vector<std::uint8_t> bytes = stream;
       for (int f = 0; f < 1 + trial % 4; ++f) {
-        const std::uint64_t r = testimages::splitmix64_at(static_cast<std::uint64_t>(run), static_cast<std::uint64_t>(f));
+        const std::uint64_t r =
+            testimages::splitmix64_at(static_cast<std::uint64_t>(run), static_cast<std::uint64_t>(f));
         // Half the trials hit the packet data, where the HT segments are.
         const std::size_t from = (trial % 2) ? std::min<std::size_t>(bytes.size() - 1, 150) : 0;
-        bytes[from + static_cast<std::size_t>(r % (bytes.size() - from))] ^= static_cast<std::uint8_t>(1u << ((r >> 32) % 8));
+        bytes[from + static_cast<std::size_t>(r % (bytes.size() - from))] ^=
+            static_cast<std::uint8_t>(1u << ((r >> 32) % 8));
       }
       ++run;
       SCOPED_TRACE("trial " + std::to_string(trial));

@@ -66,7 +66,8 @@ struct Coded {
   double db = 0;
 };
 
-Coded encode_and_measure(const imageio::Image& img, const codec::EncodeParams& p, const Scratch& s, const std::string& name) {
+Coded encode_and_measure(const imageio::Image& img, const codec::EncodeParams& p, const Scratch& s,
+                         const std::string& name) {
   const auto bytes = codec::encode(codec::to_source_image(img, "image"), p, codec::FileFormat::Codestream);
   write_bytes(s / (name + ".j2k"), bytes);
   const imageio::Image back = decode_with("opj_decompress", s / (name + ".j2k"), s / (name + ".png"));
@@ -84,7 +85,8 @@ constexpr double kRates[] = {0.25, 0.75, 2.0};
 // left. The bounds below keep what is reached from regressing.
 TEST(J2kHtRate, ByteTargetsOnTheKodakPhotographs) {
   const std::vector<int> photos = photographs();
-  if (photos.empty()) GTEST_SKIP() << "no Kodak photographs under " << (test_support::shared_dir() / "testimages" / "kodak");
+  if (photos.empty())
+    GTEST_SKIP() << "no Kodak photographs under " << (test_support::shared_dir() / "testimages" / "kodak");
   struct Case {
     int photo = 0;
     double bpp = 0;
@@ -121,8 +123,8 @@ TEST(J2kHtRate, ByteTargetsOnTheKodakPhotographs) {
     EXPECT_LE(static_cast<double>(c.ht.bytes), c.target);
     EXPECT_GE(static_cast<double>(c.ht.bytes), 0.995 * c.target);
     const double gap = c.ht.db - c.ebcot.db;
-    std::printf("kodim%02d %.2f bpp: HT %zu bytes %.3f dB, EBCOT %zu bytes %.3f dB, HT - EBCOT %+.3f dB\n", c.photo, c.bpp,
-                c.ht.bytes, c.ht.db, c.ebcot.bytes, c.ebcot.db, gap);
+    std::printf("kodim%02d %.2f bpp: HT %zu bytes %.3f dB, EBCOT %zu bytes %.3f dB, HT - EBCOT %+.3f dB\n", c.photo,
+                c.bpp, c.ht.bytes, c.ht.db, c.ebcot.bytes, c.ebcot.db, gap);
     EXPECT_GT(gap, -1.5);
     gaps[c.bpp].push_back(gap);
   }
@@ -185,7 +187,8 @@ TEST(J2kHtRate, PsnrTargetsLandJustAbove) {
 // +0.007 dB.
 TEST(J2kHtRate, CandidateSkippingIsNoWorseThanCodingEveryPlane) {
   std::vector<int> photos = photographs();
-  if (photos.empty()) GTEST_SKIP() << "no Kodak photographs under " << (test_support::shared_dir() / "testimages" / "kodak");
+  if (photos.empty())
+    GTEST_SKIP() << "no Kodak photographs under " << (test_support::shared_dir() / "testimages" / "kodak");
   photos.resize(std::min<std::size_t>(photos.size(), 4));
   struct Case {
     int photo = 0;

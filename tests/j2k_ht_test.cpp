@@ -138,8 +138,8 @@ TEST(J2kHt, ThinAndTinyImages) {
     for (int levels : {0, 1, 5}) {
       codec::EncodeParams p = ht();
       p.levels = levels;
-      check_lossless(std::to_string(w) + "x" + std::to_string(h) + " levels " + std::to_string(levels), generated(w, h, 1, 8), p,
-                     {}, "-num_decomps " + std::to_string(levels) + " -reversible true");
+      check_lossless(std::to_string(w) + "x" + std::to_string(h) + " levels " + std::to_string(levels),
+                     generated(w, h, 1, 8), p, {}, "-num_decomps " + std::to_string(levels) + " -reversible true");
     }
 }
 
@@ -166,7 +166,8 @@ TEST(J2kHt, CodeBlockSizes) {
     codec::EncodeParams p = ht();
     p.codeblock_width = w;
     p.codeblock_height = h;
-    check_lossless("code-blocks " + std::to_string(w) + "x" + std::to_string(h), generated(150, 140, 1, 16, testimages::Pattern::Noise), p);
+    check_lossless("code-blocks " + std::to_string(w) + "x" + std::to_string(h),
+                   generated(150, 140, 1, 16, testimages::Pattern::Noise), p);
   }
 }
 
@@ -222,7 +223,10 @@ TEST(J2kHt, SignedSamples) {
       const bool ojph = tool == "ojph_expand";
 
       const fs::path out = s / (tool + (ojph ? ".raw" : ".pgx"));
-      ASSERT_EQ(std::system((tool + " -i '" + (s / "s.j2k").string() + "' -o '" + out.string() + "' >/dev/null 2>&1").c_str()), 0) << tool;
+      ASSERT_EQ(std::system(
+                    (tool + " -i '" + (s / "s.j2k").string() + "' -o '" + out.string() + "' >/dev/null 2>&1").c_str()),
+                0)
+          << tool;
       const auto decoded = ojph ? read_raw(out, bits) : read_pgx(s / (tool + "_0.pgx"));
       ASSERT_EQ(decoded.size(), img.pixels.size()) << tool;
       for (std::size_t i = 0; i < decoded.size(); ++i) {
@@ -232,7 +236,6 @@ TEST(J2kHt, SignedSamples) {
     }
   }
 }
-
 
 // Lossy HT: the same quantisation indices as an EBCOT encode that keeps every pass, so each decoder
 // must return the very samples it returns for the EBCOT stream, at the PSNR such a decode gives.
@@ -280,8 +283,10 @@ TEST(J2kHt, LossyDecodesAsTheEbcotStreamOfTheSameIndices) {
 TEST(J2kHt, RefusesWhatItCannotDo) {
   const auto source = codec::to_source_image(generated(16, 16, 1, 8), "generated");
   codec::EncodeParams p = ht(false);
-  p.layers = {codec::LayerTarget{codec::LayerTarget::Kind::Bytes, 300}, codec::LayerTarget{codec::LayerTarget::Kind::Bytes, 500}};
-  EXPECT_THROW(codec::encode(source, p, codec::FileFormat::Codestream), codec::EncodeError) << "one cleanup per block: one layer";
+  p.layers = {codec::LayerTarget{codec::LayerTarget::Kind::Bytes, 300},
+              codec::LayerTarget{codec::LayerTarget::Kind::Bytes, 500}};
+  EXPECT_THROW(codec::encode(source, p, codec::FileFormat::Codestream), codec::EncodeError)
+      << "one cleanup per block: one layer";
   codec::EncodeParams m = ht();
   m.block_style.bypass = true;
   EXPECT_THROW(codec::encode(source, m, codec::FileFormat::Codestream), codec::EncodeError);

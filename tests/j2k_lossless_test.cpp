@@ -27,8 +27,6 @@ namespace fs = std::filesystem;
 using Scratch = test_support::ScratchDir;
 using test_support::write_bytes;
 
-
-
 codec::SourceImage to_source(const imageio::Image& img) { return codec::to_source_image(img, "generated"); }
 
 using test_support::decode_with;
@@ -73,12 +71,13 @@ void check_lossless(const Case& c) {
       ASSERT_TRUE(test_support::have_tool("opj_compress"));
       const fs::path source = scratch / (c.image.channels == 1 ? "in.pgm" : "in.ppm");
       imageio::write_image(source.string(), c.image);
-      const std::string cmd = "opj_compress -i '" + source.string() + "' -o '" +
-                              (scratch / "opj.j2k").string() + "' " + c.opj_equivalent + " >/dev/null 2>&1";
+      const std::string cmd = "opj_compress -i '" + source.string() + "' -o '" + (scratch / "opj.j2k").string() + "' " +
+                              c.opj_equivalent + " >/dev/null 2>&1";
       ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
       const imageio::Image grok_of_ours = decode_with(tool, file, scratch / "grk_ours.png", "-H 1");
       const imageio::Image grok_of_opj = decode_with(tool, scratch / "opj.j2k", scratch / "grk_opj.png", "-H 1");
-      EXPECT_EQ(grok_of_ours.pixels, grok_of_opj.pixels) << "Grok decodes our stream differently from OpenJPEG's equivalent";
+      EXPECT_EQ(grok_of_ours.pixels, grok_of_opj.pixels)
+          << "Grok decodes our stream differently from OpenJPEG's equivalent";
       std::printf("note: %s: grk_decompress mis-decodes this tiling for OpenJPEG's stream too; outputs identical\n",
                   c.name.c_str());
       continue;
@@ -123,7 +122,7 @@ TEST(J2kLossless, ThinAndTinyImagesAtEveryLevelCount) {
       codec::EncodeParams p = lossless();
       p.levels = levels;
       check_lossless(make_case(std::to_string(w) + "x" + std::to_string(h) + " levels " + std::to_string(levels),
-                      generated(w, h, 1, 8), p));
+                               generated(w, h, 1, 8), p));
     }
   codec::EncodeParams deep = lossless();
   deep.levels = 10;
@@ -135,7 +134,8 @@ TEST(J2kLossless, TilesWithImageAndTileOffsets) {
     codec::EncodeParams p = lossless();
     t.apply(p);
     check_lossless(make_case(t.name(), generated(45, 38, 1, 8), p, codec::FileFormat::Codestream, t.opj_options()));
-    check_lossless(make_case(t.name() + " RGB", generated(45, 38, 3, 8), p, codec::FileFormat::Codestream, t.opj_options()));
+    check_lossless(
+        make_case(t.name() + " RGB", generated(45, 38, 3, 8), p, codec::FileFormat::Codestream, t.opj_options()));
   }
 }
 
@@ -144,7 +144,8 @@ TEST(J2kLossless, ProgressionOrdersWithPrecincts) {
     for (bool precincts : {false, true}) {
       codec::EncodeParams p = lossless();
       test_support::apply_order(p, o, precincts);
-      check_lossless(make_case("order " + std::to_string(o) + (precincts ? " precincts" : ""), generated(70, 53, 3, 8), p));
+      check_lossless(
+          make_case("order " + std::to_string(o) + (precincts ? " precincts" : ""), generated(70, 53, 3, 8), p));
     }
 }
 
@@ -162,10 +163,14 @@ TEST(J2kLossless, SopEphAndModeSwitches) {
   p.sop = p.eph = true;
   check_lossless(make_case("sop eph", generated(64, 40, 3, 8), p));
   const std::pair<const char*, codec::t1::BlockStyle> modes[] = {
-      {"bypass", {true, false, false, false, false, false}},  {"reset", {false, true, false, false, false, false}},
-      {"termall", {false, false, true, false, false, false}}, {"vcausal", {false, false, false, true, false, false}},
-      {"pterm", {false, false, false, false, true, false}},   {"segsym", {false, false, false, false, false, true}},
-      {"all", {true, true, true, true, true, true}},           {"bypass+termall", {true, false, true, false, false, false}}};
+      {"bypass", {true, false, false, false, false, false}},
+      {"reset", {false, true, false, false, false, false}},
+      {"termall", {false, false, true, false, false, false}},
+      {"vcausal", {false, false, false, true, false, false}},
+      {"pterm", {false, false, false, false, true, false}},
+      {"segsym", {false, false, false, false, false, true}},
+      {"all", {true, true, true, true, true, true}},
+      {"bypass+termall", {true, false, true, false, false, false}}};
   for (const auto& [name, style] : modes) {
     codec::EncodeParams m = lossless();
     m.block_style = style;
@@ -207,10 +212,14 @@ TEST(J2kLossless, SignedSamples) {
     write_bytes(scratch / "s.j2k", bytes);
     for (const std::string tool : {"opj_decompress", "grk_decompress"}) {
       const fs::path out = scratch / (tool + ".pgx");
-      ASSERT_EQ(std::system((tool + " -i '" + (scratch / "s.j2k").string() + "' -o '" + out.string() + "' >/dev/null 2>&1").c_str()), 0);
+      ASSERT_EQ(
+          std::system(
+              (tool + " -i '" + (scratch / "s.j2k").string() + "' -o '" + out.string() + "' >/dev/null 2>&1").c_str()),
+          0);
       const auto decoded = read_pgx(scratch / (tool + "_0.pgx"));
       ASSERT_EQ(decoded.size(), img.pixels.size()) << tool;
-      for (std::size_t i = 0; i < decoded.size(); ++i) ASSERT_EQ(decoded[i], static_cast<std::int32_t>(img.pixels[i])) << tool << " at " << i;
+      for (std::size_t i = 0; i < decoded.size(); ++i)
+        ASSERT_EQ(decoded[i], static_cast<std::int32_t>(img.pixels[i])) << tool << " at " << i;
     }
   }
 }
@@ -220,7 +229,8 @@ TEST(J2kLossless, KodakPhotographs) {
   for (int i = 1; i <= 16; ++i) {
     const fs::path photo = test_support::kodak_photo(i);
     if (!fs::exists(photo)) continue;
-    check_lossless(make_case(photo.filename().string(), imageio::read_image(photo.string()), lossless(), codec::FileFormat::Jp2));
+    check_lossless(
+        make_case(photo.filename().string(), imageio::read_image(photo.string()), lossless(), codec::FileFormat::Jp2));
   }
 }
 
@@ -294,8 +304,10 @@ TEST(PackedSource, EncodesAsThePlanarImageDoes) {
     settings[3].layers = {{codec::LayerTarget::Kind::Bytes, 1500}};
     settings[4].layers = {{codec::LayerTarget::Kind::Psnr, 36}};
     for (std::size_t i = 0; i < settings.size(); ++i) {
-      SCOPED_TRACE(file.filename().string() + " " + std::to_string(image.bits_per_sample) + " bits, setting " + std::to_string(i));
-      const std::vector<std::uint8_t> expected = codec::encode(to_source(image), settings[i], codec::FileFormat::Codestream);
+      SCOPED_TRACE(file.filename().string() + " " + std::to_string(image.bits_per_sample) + " bits, setting " +
+                   std::to_string(i));
+      const std::vector<std::uint8_t> expected =
+          codec::encode(to_source(image), settings[i], codec::FileFormat::Codestream);
       EXPECT_EQ(codec::encode(packed_source(), settings[i], codec::FileFormat::Codestream), expected);  // given up
       const codec::SourceImage kept = packed_source();
       EXPECT_EQ(codec::encode(kept, settings[i], codec::FileFormat::Codestream), expected);

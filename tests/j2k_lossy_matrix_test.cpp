@@ -43,7 +43,8 @@ double psnr(const imageio::Image& a, const imageio::Image& b, int bits) {
 using test_support::decode_with;
 
 struct Case {
-  Case(std::string n, imageio::Image i, codec::EncodeParams p) : name(std::move(n)), image(std::move(i)), params(std::move(p)) {}
+  Case(std::string n, imageio::Image i, codec::EncodeParams p)
+      : name(std::move(n)), image(std::move(i)), params(std::move(p)) {}
   std::string name;
   imageio::Image image;
   codec::EncodeParams params;
@@ -56,7 +57,8 @@ struct Case {
 };
 
 imageio::Image generated(int w, int h, int channels, int bits) {
-  return testimages::generate(testimages::Pattern::Mix, w, h, channels, bits, false, static_cast<std::uint64_t>(w * 7 + h));
+  return testimages::generate(testimages::Pattern::Mix, w, h, channels, bits, false,
+                              static_cast<std::uint64_t>(w * 7 + h));
 }
 
 codec::EncodeParams lossy() {
@@ -96,11 +98,14 @@ void check(const Case& c) {
                               c.opj_equivalent + " >/dev/null 2>&1";
       ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
       const double theirs = psnr(c.image, decode_with(tool, s / "opj.j2k", s / "grk_opj.png", "-H 1"), bits_of(c));
-      const double opj_of_theirs = psnr(c.image, decode_with("opj_decompress", s / "opj.j2k", s / "opj_opj.png"), bits_of(c));
-      EXPECT_LT(theirs, opj_of_theirs - 3) << "Grok decodes OpenJPEG's stream of this tiling well but ours at " << db << " dB";
-      std::printf("note: %s: grk_decompress mis-decodes this tiling for OpenJPEG's stream too (%.1f dB against "
-                  "opj_decompress's %.1f); ours %.1f dB\n",
-                  c.name.c_str(), theirs, opj_of_theirs, db);
+      const double opj_of_theirs =
+          psnr(c.image, decode_with("opj_decompress", s / "opj.j2k", s / "opj_opj.png"), bits_of(c));
+      EXPECT_LT(theirs, opj_of_theirs - 3)
+          << "Grok decodes OpenJPEG's stream of this tiling well but ours at " << db << " dB";
+      std::printf(
+          "note: %s: grk_decompress mis-decodes this tiling for OpenJPEG's stream too (%.1f dB against "
+          "opj_decompress's %.1f); ours %.1f dB\n",
+          c.name.c_str(), theirs, opj_of_theirs, db);
       continue;
     }
     ADD_FAILURE() << tool << ": " << db << " dB, below " << c.min_psnr;

@@ -23,7 +23,6 @@ namespace fs = std::filesystem;
 using Scratch = test_support::ScratchDir;
 using test_support::write_bytes;
 
-
 bool run(const std::string& cmd) { return test_support::run_quietly(cmd); }
 
 // PSNR per channel and over all channels, peak 2^bits - 1.
@@ -135,9 +134,11 @@ TEST(J2kLossy, QualityTracksOpenJpegAtTheSameSize) {
       write_bytes(s / "ours.j2k", bytes);
       const auto ours = psnr(img, decode(s / "ours.j2k", s / "ours.png"), 8);
       const auto theirs = psnr(img, decode(s / "opj.j2k", s / "opj.png"), 8);
-      std::printf("image %d, %.4f bpp: ours %zu bytes R %.3f G %.3f B %.3f all %.3f dB; opj_compress %zu bytes R %.3f G %.3f B %.3f all %.3f dB\n",
-                  index, bpp, bytes.size(), ours[0], ours[1], ours[2], ours.back(), static_cast<std::size_t>(opj_size),
-                  theirs[0], theirs[1], theirs[2], theirs.back());
+      std::printf(
+          "image %d, %.4f bpp: ours %zu bytes R %.3f G %.3f B %.3f all %.3f dB; opj_compress %zu bytes R %.3f G %.3f B "
+          "%.3f all %.3f dB\n",
+          index, bpp, bytes.size(), ours[0], ours[1], ours[2], ours.back(), static_cast<std::size_t>(opj_size),
+          theirs[0], theirs[1], theirs[2], theirs.back());
       EXPECT_LE(bytes.size(), opj_size);
       EXPECT_GE(bytes.size(), opj_size - opj_size / 1000) << "budget left unspent";
       EXPECT_GE(ours.back(), theirs.back() - 0.005) << "over RGB";
@@ -190,9 +191,10 @@ TEST(J2kLossy, PassSkippingIsNoWorseThanCodingEveryPass) {
     for (double bpp : {0.1875, 0.75, 3.0}) {
       SCOPED_TRACE("image " + std::to_string(index) + " at " + std::to_string(bpp) + " bpp");
       codec::EncodeParams p = lossy_at(std::floor(bpp * pixels / 8));
-      if (bpp == 3.0) p.layers = {{codec::LayerTarget::Kind::Bytes, std::floor(0.25 * pixels / 8)},
-                                  {codec::LayerTarget::Kind::Bytes, std::floor(1.0 * pixels / 8)},
-                                  {codec::LayerTarget::Kind::Bytes, std::floor(3.0 * pixels / 8)}};
+      if (bpp == 3.0)
+        p.layers = {{codec::LayerTarget::Kind::Bytes, std::floor(0.25 * pixels / 8)},
+                    {codec::LayerTarget::Kind::Bytes, std::floor(1.0 * pixels / 8)},
+                    {codec::LayerTarget::Kind::Bytes, std::floor(3.0 * pixels / 8)}};
       const auto [full, skipped, report] = encode_both_ways(source, p);
       ++cases;
       EXPECT_LE(static_cast<double>(skipped.size()), p.layers.back().value);
@@ -205,8 +207,9 @@ TEST(J2kLossy, PassSkippingIsNoWorseThanCodingEveryPass) {
       write_bytes(s / "skipped.j2k", skipped);
       const double full_db = psnr(img, decode(s / "full.j2k", s / "full.png"), 8).back();
       const double skipped_db = psnr(img, decode(s / "skipped.j2k", s / "skipped.png"), 8).back();
-      std::printf("image %d at %g bpp: files differ (%zu blocks recoded): %.4f dB skipping, %.4f dB coding every pass\n",
-                  index, bpp, report.recoded_blocks, skipped_db, full_db);
+      std::printf(
+          "image %d at %g bpp: files differ (%zu blocks recoded): %.4f dB skipping, %.4f dB coding every pass\n", index,
+          bpp, report.recoded_blocks, skipped_db, full_db);
       EXPECT_GE(skipped_db, full_db);
     }
   }
@@ -265,7 +268,8 @@ TEST(J2kLossy, MoreLayersMoreQuality) {
   codec::EncodeParams p = lossy_at(0);
   p.layers.clear();
   const double pixels = 200.0 * 160.0;
-  for (double bpp : {0.1, 0.25, 0.5, 1.0, 2.0}) p.layers.push_back({codec::LayerTarget::Kind::Bytes, std::floor(bpp * pixels / 8)});
+  for (double bpp : {0.1, 0.25, 0.5, 1.0, 2.0})
+    p.layers.push_back({codec::LayerTarget::Kind::Bytes, std::floor(bpp * pixels / 8)});
   const auto bytes = codec::encode(codec::to_source_image(img, "image"), p, codec::FileFormat::Codestream);
   EXPECT_LE(static_cast<double>(bytes.size()), p.layers.back().value);
   write_bytes(s / "x.j2k", bytes);

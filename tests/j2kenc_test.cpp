@@ -90,13 +90,16 @@ TEST_F(J2kencCli, ReadsBmpTiffAndPnmInputs) {
     const auto r = j2kenc("-i '" + in.string() + "' -o '" + out.string() + "' --lossless", dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const fs::path decoded = dir / (name + (image->channels == 1 ? ".pgm" : ".ppm"));
-    ASSERT_EQ(std::system(("opj_decompress -i '" + out.string() + "' -o '" + decoded.string() + "' >/dev/null 2>&1").c_str()), 0);
+    ASSERT_EQ(
+        std::system(("opj_decompress -i '" + out.string() + "' -o '" + decoded.string() + "' >/dev/null 2>&1").c_str()),
+        0);
     EXPECT_EQ(imageio::read_image(decoded.string()).pixels, imageio::read_image(in.string()).pixels);
   }
 }
 
 TEST_F(J2kencCli, LossyRateTargetsThroughTheCommandLine) {
-  for (const std::string opts : {"--rate 1.5", "--ratio 16", "-O rate=0.0625", "--size 225", "--rate 0.5,1.5 --dwt gpu"}) {
+  for (const std::string opts :
+       {"--rate 1.5", "--ratio 16", "-O rate=0.0625", "--size 225", "--rate 0.5,1.5 --dwt gpu"}) {
     SCOPED_TRACE(opts);
     const fs::path out = dir / "x.j2k";
     const auto r = j2kenc("-i '" + rgb.string() + "' -o '" + out.string() + "' " + opts, dir);
@@ -104,7 +107,10 @@ TEST_F(J2kencCli, LossyRateTargetsThroughTheCommandLine) {
     // 40x30 pixels: 1.5 bpp over all components is 225 bytes, as is ratio 16 of 3600 raw bytes.
     EXPECT_LE(fs::file_size(out), 225u);
     EXPECT_GE(fs::file_size(out), 200u);
-    EXPECT_EQ(std::system(("opj_decompress -i '" + out.string() + "' -o '" + (dir / "x.ppm").string() + "' >/dev/null 2>&1").c_str()), 0);
+    EXPECT_EQ(
+        std::system(
+            ("opj_decompress -i '" + out.string() + "' -o '" + (dir / "x.ppm").string() + "' >/dev/null 2>&1").c_str()),
+        0);
   }
 }
 
@@ -114,8 +120,8 @@ TEST_F(J2kencCli, TimingStagesAddUpToTheTotal) {
   imageio::write_image(big.string(), testimages::generate(testimages::Pattern::Mix, 640, 480, 3, 8));
   const auto r = j2kenc("-i '" + big.string() + "' -o '" + out.string() + "' --rate 1 --dwt cpu -q --timing=json", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* stage : {"input read", "GL context creation", "shader compilation", "upload", "DWT compute", "download",
-                            "quantization + tier-1", "rate control", "tier-2", "output"})
+  for (const char* stage : {"input read", "GL context creation", "shader compilation", "upload", "DWT compute",
+                            "download", "quantization + tier-1", "rate control", "tier-2", "output"})
     EXPECT_NE(r.err.find(std::string("\"") + stage + "\""), std::string::npos) << stage << " missing from " << r.err;
   auto number_after = [&](const std::string& key) {
     const auto at = r.err.find("\"" + key + "\": ");

@@ -36,9 +36,7 @@ std::string lower_symbols(const std::string& program) {
 }
 
 // The program's dynamic dependencies as readelf lists them.
-std::string needed_libraries(const std::string& program) {
-  return output_of("readelf -d '" + program + "' 2>&1");
-}
+std::string needed_libraries(const std::string& program) { return output_of("readelf -d '" + program + "' 2>&1"); }
 
 // No GPL library among the program's dependencies and none of their code in it.
 void expect_no_gpl(const std::string& program) {

@@ -233,7 +233,8 @@ TEST(CmuAvatar, ForeignRigMovesAsTheGeneratedPerformer) {
     const int f = k * (bvh.motion.frames - 1) / 4;
     // Both faces: a viseme and an expression (the same targets, in the same order).
     for (std::size_t t = 0; t < c.targets.size(); ++t)
-      avatar_frame.weights[t] = generated_frame.weights[t] = t == static_cast<std::size_t>(k) || t == c.targets.size() - 2 ? 0.7f : 0.0f;
+      avatar_frame.weights[t] = generated_frame.weights[t] =
+          t == static_cast<std::size_t>(k) || t == c.targets.size() - 2 ? 0.7f : 0.0f;
     performer::local_transforms(sk, performer::frame_values(sk, bvh.motion, f), local);
     performer::world_transforms(sk, local, world);
     performer::retarget_pose(r, world, posed);
@@ -244,7 +245,8 @@ TEST(CmuAvatar, ForeignRigMovesAsTheGeneratedPerformer) {
     performer::skinning_matrices(world, g.inverse_bind, generated_frame.matrices);
     performer::deform_character_parallel(generated_frame.job(g));
     for (std::size_t v = 0; v < c.vertex_count(); ++v) {
-      worst_position = std::max(worst_position, glm::distance(avatar_frame.positions[v], generated_frame.positions[v]) / size);
+      worst_position =
+          std::max(worst_position, glm::distance(avatar_frame.positions[v], generated_frame.positions[v]) / size);
       worst_normal = std::max(worst_normal, glm::distance(avatar_frame.normals[v], generated_frame.normals[v]));
     }
   }

@@ -330,7 +330,7 @@ TEST_P(CmuBodyTest, SsdWeightsValidAndRestPoseReproducesMesh) {
 // rest pose.
 struct Stretch {
   int frames = 0;
-  double longest = 1.0;   // largest posed / rest edge length over all frames
+  double longest = 1.0;  // largest posed / rest edge length over all frames
   int longest_frame = 0;
   double share = 0.0;     // largest share of edges beyond twice their rest length in any frame
   double shortest = 1.0;  // smallest posed / rest (creases of bent joints)
@@ -353,8 +353,8 @@ Stretch stretch_in_motion(const CmuBody& cmu, const SkinnedMesh& skinned) {
     const TriangleMesh posed = pose(skinned, world);
     std::size_t beyond_two = 0;
     for (const auto& [a, b] : edges) {
-      const double ratio = glm::length(posed.positions[a] - posed.positions[b]) /
-                           glm::length(rest.positions[a] - rest.positions[b]);
+      const double ratio =
+          glm::length(posed.positions[a] - posed.positions[b]) / glm::length(rest.positions[a] - rest.positions[b]);
       if (ratio > 2.0) ++beyond_two;
       if (ratio > s.longest) s.longest = ratio, s.longest_frame = f;
       s.shortest = std::min(s.shortest, ratio);
@@ -378,9 +378,10 @@ TEST_P(CmuBodyTest, SkinHoldsTogetherInMotion) {
   expect_bound_to(skinned, sk, cmu.body.mesh);
 
   const Stretch s = stretch_in_motion(cmu, skinned);
-  std::printf("%s, skeleton-aware weights: %d frames, longest edge %.2fx its rest length (frame %d), at most %.3f %% "
-              "of edges beyond 2x; shortest %.3fx\n",
-              GetParam(), s.frames, s.longest, s.longest_frame, 100.0 * s.share, s.shortest);
+  std::printf(
+      "%s, skeleton-aware weights: %d frames, longest edge %.2fx its rest length (frame %d), at most %.3f %% "
+      "of edges beyond 2x; shortest %.3fx\n",
+      GetParam(), s.frames, s.longest, s.longest_frame, 100.0 * s.share, s.shortest);
   EXPECT_LE(s.share, 0.001);
   EXPECT_LT(s.longest, 4.0);
 

@@ -337,7 +337,8 @@ TEST(CmuCharacter, HeadFollowsTheHeadJointRigidly) {
   performer::deform_character_parallel(frame.job(c));
 
   // Every head vertex is where the head joint's transform takes it...
-  const glm::mat4 head = world[static_cast<std::size_t>(c.head_joint)] * c.inverse_bind[static_cast<std::size_t>(c.head_joint)];
+  const glm::mat4 head =
+      world[static_cast<std::size_t>(c.head_joint)] * c.inverse_bind[static_cast<std::size_t>(c.head_joint)];
   float worst = 0.0f;
   for (std::size_t v = c.head_first; v < c.vertex_count(); ++v)
     worst = std::max(worst, glm::distance(frame.positions[v], glm::vec3(head * glm::vec4(c.mesh.positions[v], 1.0f))));

@@ -196,8 +196,8 @@ TEST(PerformerCli, VisemesThenFace) {
   const std::string ply = slurp(dir / "frames" / "frame_00000.ply");
   EXPECT_NE(ply.find("element vertex 9298\n"), std::string::npos) << ply.substr(0, 200);
 
-  const RunResult obj = run_performer({"face", "--weights", (dir / "w.csv").string(), "-o", (dir / "objs").string(),
-                                       "--format", "obj"});
+  const RunResult obj =
+      run_performer({"face", "--weights", (dir / "w.csv").string(), "-o", (dir / "objs").string(), "--format", "obj"});
   ASSERT_EQ(obj.exit_code, 0) << obj.err;
   EXPECT_TRUE(fs::exists(dir / "objs" / "frame_00000.obj"));
 }
@@ -237,8 +237,8 @@ TEST(PerformerCli, VisemesAndFaceBadInput) {
   EXPECT_NE(f.err.find("w.csv:3:"), std::string::npos) << f.err;
 
   const TempFile good("good.csv", "time,AA\n0,1\n");
-  const RunResult gltf = run_performer({"face", "--weights", good.str(), "--gltf", "/nonexistent/avatar.glb", "-o",
-                                        (dir / "frames").string()});
+  const RunResult gltf = run_performer(
+      {"face", "--weights", good.str(), "--gltf", "/nonexistent/avatar.glb", "-o", (dir / "frames").string()});
   EXPECT_EQ(gltf.exit_code, 1);
   expect_one_error_line(gltf);
   EXPECT_NE(gltf.err.find("/nonexistent/avatar.glb"), std::string::npos) << gltf.err;
@@ -284,13 +284,13 @@ TEST(PerformerCli, PoseWithSpeech) {
   EXPECT_GT(vertices, 15000u) << "body and head";
 
   for (const char* range : {"5:2", "x:3", "990:999"}) {
-    const RunResult bad = run_performer({"pose", "--bvh", bvh.string(), "--frames", range, "-o", (dir / "bad").string()});
+    const RunResult bad =
+        run_performer({"pose", "--bvh", bvh.string(), "--frames", range, "-o", (dir / "bad").string()});
     EXPECT_EQ(bad.exit_code, 1) << range;
     expect_one_error_line(bad);
     EXPECT_FALSE(fs::exists(dir / "bad")) << range;
   }
 }
-
 
 // `performer render` end to end: an MP4 that ffprobe reads with the size and frame count asked for
 // and an audio stream as long as the speech (within one frame).
@@ -345,8 +345,8 @@ TEST(PerformerCli, RenderWritesVideoWithTheSpeech) {
   const std::string audio = run_ffprobe(dir / "hello.mp4", "codec_name,duration", "a:0");
   ASSERT_EQ(audio.rfind("aac\n", 0), 0u) << audio;
   // The same speech, spoken again to a WAV: the video's sound lasts as long, within one frame.
-  const RunResult wav = run_performer({"visemes", "--lang", "en-us", "--text", text, "--wav", (dir / "hello.wav").string(),
-                                       "-o", (dir / "w.csv").string()});
+  const RunResult wav = run_performer({"visemes", "--lang", "en-us", "--text", text, "--wav",
+                                       (dir / "hello.wav").string(), "-o", (dir / "w.csv").string()});
   ASSERT_EQ(wav.exit_code, 0) << wav.err;
   const double speech = wav_seconds(dir / "hello.wav");
   EXPECT_GT(speech, 0.3);
@@ -399,8 +399,17 @@ TEST(PerformerCli, RenderGltfAvatarWritesVideoAndShowsTheAvatar) {
   ASSERT_TRUE(fs::exists(avatar));
 
   // With speech when it is built; the video is checked the same either way.
-  std::vector<std::string> video_args = {"render", "--gltf", avatar, "--bvh", bvh.string(), "--frames", "0:9", "--size",
-                                         "160x120", "-o", (dir / "out.mp4").string()};
+  std::vector<std::string> video_args = {"render",
+                                         "--gltf",
+                                         avatar,
+                                         "--bvh",
+                                         bvh.string(),
+                                         "--frames",
+                                         "0:9",
+                                         "--size",
+                                         "160x120",
+                                         "-o",
+                                         (dir / "out.mp4").string()};
   if (kPerformerSpeaks) video_args.insert(video_args.end(), {"--lang", "en-us", "--text", "Hi"});
   const RunResult r = run_performer(video_args);
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -414,8 +423,8 @@ TEST(PerformerCli, RenderGltfAvatarWritesVideoAndShowsTheAvatar) {
 
   // One frame as PNG, of the avatar and of the generated performer.
   for (const char* which : {"avatar_frames", "generated_frames"}) {
-    std::vector<std::string> args = {"render", "--bvh", bvh.string(), "--frames", "300:300", "--size", "160x120",
-                                     "-o", (dir / which).string()};
+    std::vector<std::string> args = {"render",  "--bvh", bvh.string(),          "--frames", "300:300", "--size",
+                                     "160x120", "-o",    (dir / which).string()};
     if (std::string(which) == "avatar_frames") args.insert(args.end(), {"--gltf", avatar});
     const RunResult png = run_performer(args);
     ASSERT_EQ(png.exit_code, 0) << png.err;

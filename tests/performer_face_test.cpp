@@ -85,7 +85,8 @@ struct Blend {
 Blend blend(const FaceModel& m, const std::vector<float>& weights, unsigned threads = 1) {
   Blend out{std::vector<glm::vec3>(m.vertex_count()), std::vector<glm::vec3>(m.vertex_count())};
   const FaceStreams streams(m);
-  const FaceDeformJob job{m.positions, m.normals, streams.positions, streams.normals, weights, out.positions, out.normals};
+  const FaceDeformJob job{m.positions, m.normals,     streams.positions, streams.normals,
+                          weights,     out.positions, out.normals};
   if (threads == 1)
     performer::deform_face(job);
   else
@@ -109,7 +110,8 @@ TEST(ProceduralHead, IsClosedAndConsistentlyOriented) {
     }
   for (const auto& [edge, count] : directed) {
     ASSERT_EQ(count, 1) << "edge " << edge.first << "-" << edge.second << " used twice in one direction";
-    ASSERT_EQ(directed.count({edge.second, edge.first}), 1u) << "edge " << edge.first << "-" << edge.second << " is open";
+    ASSERT_EQ(directed.count({edge.second, edge.first}), 1u)
+        << "edge " << edge.first << "-" << edge.second << " is open";
   }
   // Outward: the signed volume (divergence theorem) is positive, and about a head's (3-5 litres).
   double volume = 0.0;
@@ -191,8 +193,7 @@ TEST(ProceduralHead, MouthOpenVisemesDropTheJaw) {
   // The open-mouth visemes (Figure 3.5's AA, EH, O, NG, K) lower the lower lip with the jaw; AA the
   // most. Closed-mouth ones (M) do not.
   EXPECT_LT(target(m, "AA").position_deltas[lip].y, -0.008f);
-  for (const char* name : {"EH", "O", "NG", "K"})
-    EXPECT_LT(target(m, name).position_deltas[lip].y, -0.003f) << name;
+  for (const char* name : {"EH", "O", "NG", "K"}) EXPECT_LT(target(m, name).position_deltas[lip].y, -0.003f) << name;
   for (const char* name : {"EH", "O", "NG", "K"})
     EXPECT_LT(target(m, "AA").position_deltas[lip].y, target(m, name).position_deltas[lip].y) << name;
   EXPECT_GT(target(m, "M").position_deltas[lip].y, -0.001f);
@@ -240,7 +241,8 @@ TEST(ProceduralHead, IsDeterministicAndChecksParameters) {
   const FaceModel b = performer::build_procedural_head(viseme_set(), p);
   EXPECT_TRUE(same_bits(a.positions, b.positions));
   EXPECT_EQ(a.indices, b.indices);
-  for (std::size_t t = 0; t < a.targets.size(); ++t) EXPECT_TRUE(same_bits(a.targets[t].position_deltas, b.targets[t].position_deltas));
+  for (std::size_t t = 0; t < a.targets.size(); ++t)
+    EXPECT_TRUE(same_bits(a.targets[t].position_deltas, b.targets[t].position_deltas));
   p.segments = 33;
   EXPECT_THROW(performer::build_procedural_head(viseme_set(), p), std::invalid_argument);
   p.segments = 32;
@@ -297,7 +299,8 @@ TEST(FaceDeform, NormalsStayUnitAndThreadsAgree) {
     // Equation 3.9 is linear: the blend equals the neutral plus the weighted sum, to rounding.
     for (std::size_t v = 0; v < m.vertex_count(); v += 97) {
       glm::dvec3 expected(m.positions[v]);
-      for (std::size_t t = 0; t < m.targets.size(); ++t) expected += double(w[t]) * glm::dvec3(m.targets[t].position_deltas[v]);
+      for (std::size_t t = 0; t < m.targets.size(); ++t)
+        expected += double(w[t]) * glm::dvec3(m.targets[t].position_deltas[v]);
       ASSERT_LT(glm::length(expected - glm::dvec3(serial.positions[v])), 1e-6);
     }
     for (const unsigned threads : {2u, 3u, 8u}) {
@@ -642,7 +645,8 @@ TEST(MorphMapping, DefaultFilesParseAndErrorsNameFileAndLine) {
     EXPECT_EQ(e.line(), 2);
   }
   EXPECT_THROW(performer::parse_morph_recipes("smile\tmuch\tmouthSmileLeft\n", "a.tsv"), performer::VisemeDataError);
-  EXPECT_THROW(performer::parse_morph_recipes("smile 1 a\nblink 1 b\nsmile 1 c\n", "a.tsv"), performer::VisemeDataError);
+  EXPECT_THROW(performer::parse_morph_recipes("smile 1 a\nblink 1 b\nsmile 1 c\n", "a.tsv"),
+               performer::VisemeDataError);
 }
 
 }  // namespace

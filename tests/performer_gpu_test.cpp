@@ -90,7 +90,8 @@ const Cmu& cmu(const std::string& name) {
   if (!slot) {
     slot = std::make_unique<Cmu>();
     slot->bvh = performer::read_bvh(test_support::bvh_asset(name));
-    slot->character = performer::build_character(slot->bvh.skeleton, performer::build_procedural_head(library().visemes()));
+    slot->character =
+        performer::build_character(slot->bvh.skeleton, performer::build_procedural_head(library().visemes()));
   }
   return *slot;
 }
@@ -145,32 +146,35 @@ class GpuDeformTest : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(GpuDeformTest, EqualsTheCpuWithSpeechDrivingTheFace) {
   REQUIRE_SHARED_FILE(test_support::bvh_asset(GetParam()));
-  if (!performer::EspeakTts::built()) GTEST_SKIP() << "speech was not built (GPUJ2K_PERFORMER_SPEECH=OFF); espeak-ng drives the face here";
+  if (!performer::EspeakTts::built())
+    GTEST_SKIP() << "speech was not built (GPUJ2K_PERFORMER_SPEECH=OFF); espeak-ng drives the face here";
   const Cmu& m = cmu(GetParam());
-  for (const auto storage : {performer::render::BoneStorage::uniform_block, performer::render::BoneStorage::buffer_texture}) {
-  GpuDeformer gpu(context(), m.character, storage);
-  const performer::WeightTrack& track = speech_track();
-  const performer::ChannelBinding binding = performer::bind_channels(track, performer::build_procedural_head(library().visemes()));
-  std::vector<float> weights(m.character.targets.size());
-  const int frames = m.bvh.motion.frames;
-  int compared = 0, with_face = 0;
-  Agreement worst;
-  for (int k = 0; k < 6; ++k) {
-    const int f = k * (frames - 1) / 5;
-    const std::size_t t = static_cast<std::size_t>(k) * (track.frame_count() - 1) / 5;
-    performer::target_weights(binding, track.frame(t), weights);
-    with_face += std::any_of(weights.begin(), weights.end(), [](float w) { return w != 0.0f; });
-    const Agreement a = compare(m, gpu, weights, f);
-    EXPECT_LT(a.position, 1e-5f) << "frame " << f;
-    EXPECT_LT(a.normal, 1e-4f) << "frame " << f;
-    worst.position = std::max(worst.position, a.position);
-    worst.normal = std::max(worst.normal, a.normal);
-    ++compared;
-  }
-  EXPECT_EQ(compared, 6);
-  EXPECT_GE(with_face, 3);  // the face really was driven
-  std::printf("%s, bones in a %s: %d frames, positions within %.2g of the size, normals within %.2g\n", GetParam(),
-              gpu.bone_storage().c_str(), compared, worst.position, worst.normal);
+  for (const auto storage :
+       {performer::render::BoneStorage::uniform_block, performer::render::BoneStorage::buffer_texture}) {
+    GpuDeformer gpu(context(), m.character, storage);
+    const performer::WeightTrack& track = speech_track();
+    const performer::ChannelBinding binding =
+        performer::bind_channels(track, performer::build_procedural_head(library().visemes()));
+    std::vector<float> weights(m.character.targets.size());
+    const int frames = m.bvh.motion.frames;
+    int compared = 0, with_face = 0;
+    Agreement worst;
+    for (int k = 0; k < 6; ++k) {
+      const int f = k * (frames - 1) / 5;
+      const std::size_t t = static_cast<std::size_t>(k) * (track.frame_count() - 1) / 5;
+      performer::target_weights(binding, track.frame(t), weights);
+      with_face += std::any_of(weights.begin(), weights.end(), [](float w) { return w != 0.0f; });
+      const Agreement a = compare(m, gpu, weights, f);
+      EXPECT_LT(a.position, 1e-5f) << "frame " << f;
+      EXPECT_LT(a.normal, 1e-4f) << "frame " << f;
+      worst.position = std::max(worst.position, a.position);
+      worst.normal = std::max(worst.normal, a.normal);
+      ++compared;
+    }
+    EXPECT_EQ(compared, 6);
+    EXPECT_GE(with_face, 3);  // the face really was driven
+    std::printf("%s, bones in a %s: %d frames, positions within %.2g of the size, normals within %.2g\n", GetParam(),
+                gpu.bone_storage().c_str(), compared, worst.position, worst.normal);
   }
 }
 
@@ -246,7 +250,8 @@ class GltfAvatarGpuTest : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(GltfAvatarGpuTest, EqualsTheCpuWithSpeechDrivingTheMorphTargets) {
   REQUIRE_SHARED_FILE(test_support::bvh_asset(GetParam()));
-  if (!performer::EspeakTts::built()) GTEST_SKIP() << "speech was not built (GPUJ2K_PERFORMER_SPEECH=OFF); espeak-ng drives the face here";
+  if (!performer::EspeakTts::built())
+    GTEST_SKIP() << "speech was not built (GPUJ2K_PERFORMER_SPEECH=OFF); espeak-ng drives the face here";
   const CmuAvatar& m = cmu_avatar(GetParam());
   ASSERT_FALSE(m.character.targets.empty());
   EXPECT_EQ(m.retarget.unmatched, (std::vector<std::string>{"Prop"}));
@@ -269,13 +274,15 @@ TEST_P(GltfAvatarGpuTest, EqualsTheCpuWithSpeechDrivingTheMorphTargets) {
     worst.normal = std::max(worst.normal, a.normal);
   }
   EXPECT_GE(with_face, 3);  // the morph targets really were driven
-  std::printf("%s, glTF avatar (%zu vertices, %zu morph targets, bones in a %s): positions within %.2g of the size, "
-              "normals within %.2g\n",
-              GetParam(), m.character.vertex_count(), m.character.targets.size(), gpu.bone_storage().c_str(),
-              worst.position, worst.normal);
+  std::printf(
+      "%s, glTF avatar (%zu vertices, %zu morph targets, bones in a %s): positions within %.2g of the size, "
+      "normals within %.2g\n",
+      GetParam(), m.character.vertex_count(), m.character.targets.size(), gpu.bone_storage().c_str(), worst.position,
+      worst.normal);
 }
 
-INSTANTIATE_TEST_SUITE_P(Cmu, GltfAvatarGpuTest, ::testing::Values("cmu_131_01.bvh", "cmu_131_02.bvh", "cmu_131_03.bvh"),
+INSTANTIATE_TEST_SUITE_P(Cmu, GltfAvatarGpuTest,
+                         ::testing::Values("cmu_131_01.bvh", "cmu_131_02.bvh", "cmu_131_03.bvh"),
                          [](const auto& info) { return std::string(info.param).substr(4, 6); });
 
 // --- Rendering (section 3.7) ----------------------------------------------------------------------
@@ -331,15 +338,20 @@ Silhouettes rendered_silhouettes(const Character& c, std::span<const glm::mat4> 
   std::vector<std::uint8_t> cpu(pixels, 0);
   auto to_pixel = [&](const glm::vec3& p) {
     const glm::vec4 clip = vp * glm::vec4(p, 1.0f);
-    return glm::vec2((clip.x / clip.w * 0.5f + 0.5f) * width, (0.5f - clip.y / clip.w * 0.5f) * height);  // top row first
+    return glm::vec2((clip.x / clip.w * 0.5f + 0.5f) * width,
+                     (0.5f - clip.y / clip.w * 0.5f) * height);  // top row first
   };
   const auto& idx = c.mesh.indices;
   for (std::size_t t = 0; t < idx.size(); t += 3) {
     const glm::vec2 a = to_pixel(frame.positions[idx[t]]), b = to_pixel(frame.positions[idx[t + 1]]),
                     d = to_pixel(frame.positions[idx[t + 2]]);
-    const int x0 = std::max(0, int(std::floor(std::min({a.x, b.x, d.x})))), x1 = std::min(width - 1, int(std::ceil(std::max({a.x, b.x, d.x}))));
-    const int y0 = std::max(0, int(std::floor(std::min({a.y, b.y, d.y})))), y1 = std::min(height - 1, int(std::ceil(std::max({a.y, b.y, d.y}))));
-    auto edge = [](glm::vec2 p, glm::vec2 q, glm::vec2 r) { return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x); };
+    const int x0 = std::max(0, int(std::floor(std::min({a.x, b.x, d.x})))),
+              x1 = std::min(width - 1, int(std::ceil(std::max({a.x, b.x, d.x}))));
+    const int y0 = std::max(0, int(std::floor(std::min({a.y, b.y, d.y})))),
+              y1 = std::min(height - 1, int(std::ceil(std::max({a.y, b.y, d.y}))));
+    auto edge = [](glm::vec2 p, glm::vec2 q, glm::vec2 r) {
+      return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
+    };
     const float area = edge(a, b, d);
     if (area == 0.0f) continue;
     for (int y = y0; y <= y1; ++y)
@@ -353,7 +365,8 @@ Silhouettes rendered_silhouettes(const Character& c, std::span<const glm::mat4> 
   Silhouettes s;
   for (std::size_t i = 0; i < pixels; ++i) {
     int difference = 0;
-    for (std::size_t k = 0; k < 3; ++k) difference = std::max(difference, std::abs(int(with[i * 3 + k]) - int(without[i * 3 + k])));
+    for (std::size_t k = 0; k < 3; ++k)
+      difference = std::max(difference, std::abs(int(with[i * 3 + k]) - int(without[i * 3 + k])));
     const bool rendered = difference > 12;
     shown += rendered;
     s.projected += cpu[i];

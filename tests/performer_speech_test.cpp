@@ -111,8 +111,7 @@ std::vector<Sample> samples() {
        {"你好，我係學生", "今日天氣好好，我哋去公園散步啦。", "佢食咗飯未呀？唔該晒！",
         "香港嘅夜景好靚，維多利亞港兩岸都係燈。"}},
       {"cmn-latn-pinyin",
-       {"ni3 hao3, wo3 shi4 xue2 sheng1",
-        "jin1 tian1 tian1 qi4 hen3 hao3, wo3 men5 qu4 gong1 yuan2 san4 bu4 ba5.",
+       {"ni3 hao3, wo3 shi4 xue2 sheng1", "jin1 tian1 tian1 qi4 hen3 hao3, wo3 men5 qu4 gong1 yuan2 san4 bu4 ba5.",
         "lü4 se4 de5 shu4 ye4 zai4 feng1 zhong1 piao1 dong4, xiao3 niao3 zai4 chuang1 wai4 chang4 ge1.",
         "er4 shi2 ge4 ren2 zuo4 che1 qu4 bei3 jing1 kan4 chang2 cheng2, jue2 de5 hen3 qiong2 que4 ye3 xiong2 wei3."}},
       {"ja",
@@ -188,8 +187,8 @@ TEST_F(EspeakTtsTest, CantoneseNeiHouIsNEiHOu) {
   // ...which the mapping splits into the table's nucleus and coda.
   const VisemeLibrary& lib = library();
   const std::vector<int> expected = {
-      lib.viseme_for("yue", "n", PhonemeRole::onset), lib.viseme_for("yue", "e", PhonemeRole::nucleus),
-      lib.viseme_for("yue", "i", PhonemeRole::coda),  lib.viseme_for("yue", "h", PhonemeRole::onset),
+      lib.viseme_for("yue", "n", PhonemeRole::onset),   lib.viseme_for("yue", "e", PhonemeRole::nucleus),
+      lib.viseme_for("yue", "i", PhonemeRole::coda),    lib.viseme_for("yue", "h", PhonemeRole::onset),
       lib.viseme_for("yue", "o", PhonemeRole::nucleus), lib.viseme_for("yue", "u", PhonemeRole::coda),
   };
   EXPECT_EQ(open_visemes(performer::speech_visemes(speech.phonemes, mapping("yue"))), expected);
@@ -199,8 +198,10 @@ TEST_F(EspeakTtsTest, MandarinNiHaoFromPinyin) {
   const Speech speech = tts().speak("ni3 hao3", "cmn-latn-pinyin");
   const VisemeLibrary& lib = library();
   const std::vector<int> expected = {
-      lib.viseme_for("cmn", "n"), lib.viseme_for("cmn", "i", PhonemeRole::nucleus),
-      lib.viseme_for("cmn", "h", PhonemeRole::onset), lib.viseme_for("cmn", "a", PhonemeRole::nucleus),
+      lib.viseme_for("cmn", "n"),
+      lib.viseme_for("cmn", "i", PhonemeRole::nucleus),
+      lib.viseme_for("cmn", "h", PhonemeRole::onset),
+      lib.viseme_for("cmn", "a", PhonemeRole::nucleus),
       lib.viseme_for("cmn", "o", PhonemeRole::nucleus),
   };
   EXPECT_EQ(open_visemes(performer::speech_visemes(speech.phonemes, mapping("cmn-latn-pinyin"))), expected);
@@ -287,7 +288,8 @@ TEST_F(EspeakTtsTest, MalformedUtf8IsRefused) {
 
 // A build without espeak-ng still declares the engine, which refuses with one line saying why.
 TEST(EspeakTtsAbsent, RefusesWithOneLineSayingSpeechWasNotBuilt) {
-  if (EspeakTts::built()) GTEST_SKIP() << "speech is built; this checks the build without it (GPUJ2K_PERFORMER_SPEECH=OFF)";
+  if (EspeakTts::built())
+    GTEST_SKIP() << "speech is built; this checks the build without it (GPUJ2K_PERFORMER_SPEECH=OFF)";
   const std::string m = message_of<std::runtime_error>([] { EspeakTts().speak("hello", "en-us"); });
   EXPECT_TRUE(contains(m, "speech was not built")) << m;
   EXPECT_EQ(m.find('\n'), std::string::npos) << m;
@@ -369,7 +371,8 @@ TEST(EspeakVisemes, CommentsStartOnlyAtAFieldStart) {
   EXPECT_EQ(map.entries[0].mnemonic, "t#");
   EXPECT_EQ(map.entries[0].visemes, std::vector<int>{library().viseme_for("en", "t")});
   EXPECT_EQ(map.entries[0].line, 2);
-  EXPECT_EQ(map.entries[1].visemes, (std::vector<int>{library().viseme_for("en", "ɑː"), library().viseme_for("en", "ɹ")}));
+  EXPECT_EQ(map.entries[1].visemes,
+            (std::vector<int>{library().viseme_for("en", "ɑː"), library().viseme_for("en", "ɹ")}));
   EXPECT_EQ(map.entries[2].visemes, (std::vector<int>{12, 12}));
 }
 
@@ -423,7 +426,8 @@ TEST(Wav, FailedWriteLeavesNothingBehind) {
   const fs::path target = dir / "taken.wav";
   fs::create_directory(target);
   write_text(target / "keep", "x");
-  const std::string m = message_of<std::runtime_error>([&] { performer::write_wav(target, 22050, std::vector<std::int16_t>(100)); });
+  const std::string m =
+      message_of<std::runtime_error>([&] { performer::write_wav(target, 22050, std::vector<std::int16_t>(100)); });
   EXPECT_TRUE(contains(m, target.string())) << m;
   EXPECT_TRUE(fs::is_directory(target));
   EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1);
@@ -446,10 +450,10 @@ TEST(Wav, ReaderRejectsWhatIsNotOneChannelOf16BitPcm) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"not a wav at all", "not a RIFF/WAVE"},
       {good.substr(0, good.size() - 2), "RIFF header says"},
-      {corrupt(22, 2), "not 16-bit mono PCM"},   // two channels
-      {corrupt(34, 8), "not 16-bit mono PCM"},   // 8 bits
+      {corrupt(22, 2), "not 16-bit mono PCM"},  // two channels
+      {corrupt(34, 8), "not 16-bit mono PCM"},  // 8 bits
       {corrupt(32, 4), "block align"},
-      {corrupt(40, 30), "runs past the end"},    // data size larger than the file
+      {corrupt(40, 30), "runs past the end"},  // data size larger than the file
   };
   for (const auto& [bytes, says] : cases) {
     write_text(file, bytes);

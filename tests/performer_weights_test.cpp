@@ -428,12 +428,13 @@ TEST(WeightTrack, CsvReadsBack) {
   EXPECT_EQ(line_of_error("time,AA,AA\n0,1,1\n"), 1);        // repeated channel
   EXPECT_EQ(line_of_error("time,AA\n0,1\n0.1,0.5,2\n"), 3);  // field count
   EXPECT_EQ(line_of_error("time,AA\n0,1\n0.1,x\n"), 3);      // not a number
-  EXPECT_EQ(line_of_error("time,AA\n0,1\n\n0,1\n"), 4);     // time not increasing
+  EXPECT_EQ(line_of_error("time,AA\n0,1\n\n0,1\n"), 4);      // time not increasing
   EXPECT_EQ(line_of_error("time,AA\n0,1.5\n"), 2);           // outside [0, 1]
   EXPECT_EQ(line_of_error("time,\"A\n"), 1);                 // unterminated quote
-  EXPECT_EQ(line_of_error("time,AA\n"), 0);                   // no frames
-  EXPECT_EQ(line_of_error(""), 0);                             // no header
-  const auto quoted = performer::parse_weights_csv("time,\"AA\",\"my, \"\"odd\"\" one\"\r\n0,1,0.5\r\n", "q.csv", viseme_set());
+  EXPECT_EQ(line_of_error("time,AA\n"), 0);                  // no frames
+  EXPECT_EQ(line_of_error(""), 0);                           // no header
+  const auto quoted =
+      performer::parse_weights_csv("time,\"AA\",\"my, \"\"odd\"\" one\"\r\n0,1,0.5\r\n", "q.csv", viseme_set());
   EXPECT_EQ(quoted.channels, (std::vector<std::string>{"AA", "my, \"odd\" one"}));
   EXPECT_EQ(quoted.viseme_channels, 1);
 }

@@ -130,7 +130,8 @@ class BruteForce {
   explicit BruteForce(const std::vector<std::vector<std::pair<std::size_t, double>>>& points) {
     enumerate(points, 0, 0, 0.0);
     std::sort(combos_.begin(), combos_.end());
-    for (std::size_t i = 1; i < combos_.size(); ++i) combos_[i].second = std::max(combos_[i].second, combos_[i - 1].second);
+    for (std::size_t i = 1; i < combos_.size(); ++i)
+      combos_[i].second = std::max(combos_[i].second, combos_[i - 1].second);
   }
   double best_within(std::size_t budget) const {
     const auto past = std::upper_bound(combos_.begin(), combos_.end(), std::make_pair(budget, kInf));
@@ -501,7 +502,8 @@ TEST(Select, DistortionTargetIsMetWithFewestBytes) {
 // ---------------------------------------------------------------------------------------------
 // Quality layers
 
-void check_layers(const Hulls& hulls, const std::vector<std::size_t>& budgets, const std::vector<std::vector<int>>& layers) {
+void check_layers(const Hulls& hulls, const std::vector<std::size_t>& budgets,
+                  const std::vector<std::vector<int>>& layers) {
   ASSERT_EQ(layers.size(), budgets.size());
   for (std::size_t l = 0; l < layers.size(); ++l) {
     SCOPED_TRACE(l);

@@ -25,16 +25,16 @@ struct QeRow {
 };
 
 inline const QeRow kQeTable[47] = {
-    {0x5601, 1, 1, 1},    {0x3401, 2, 6, 0},    {0x1801, 3, 9, 0},    {0x0AC1, 4, 12, 0},   {0x0521, 5, 29, 0},
-    {0x0221, 38, 33, 0},  {0x5601, 7, 6, 1},    {0x5401, 8, 14, 0},   {0x4801, 9, 14, 0},   {0x3801, 10, 14, 0},
-    {0x3001, 11, 17, 0},  {0x2401, 12, 18, 0},  {0x1C01, 13, 20, 0},  {0x1601, 29, 21, 0},  {0x5601, 15, 14, 1},
-    {0x5401, 16, 14, 0},  {0x5101, 17, 15, 0},  {0x4801, 18, 16, 0},  {0x3801, 19, 17, 0},  {0x3401, 20, 18, 0},
-    {0x3001, 21, 19, 0},  {0x2801, 22, 19, 0},  {0x2401, 23, 20, 0},  {0x2201, 24, 21, 0},  {0x1C01, 25, 22, 0},
-    {0x1801, 26, 23, 0},  {0x1601, 27, 24, 0},  {0x1401, 28, 25, 0},  {0x1201, 29, 26, 0},  {0x1101, 30, 27, 0},
-    {0x0AC1, 31, 28, 0},  {0x09C1, 32, 29, 0},  {0x08A1, 33, 30, 0},  {0x0521, 34, 31, 0},  {0x0441, 35, 32, 0},
-    {0x02A1, 36, 33, 0},  {0x0221, 37, 34, 0},  {0x0141, 38, 35, 0},  {0x0111, 39, 36, 0},  {0x0085, 40, 37, 0},
-    {0x0049, 41, 38, 0},  {0x0025, 42, 39, 0},  {0x0015, 43, 40, 0},  {0x0009, 44, 41, 0},  {0x0005, 45, 42, 0},
-    {0x0001, 45, 43, 0},  {0x5601, 46, 46, 0},
+    {0x5601, 1, 1, 1},   {0x3401, 2, 6, 0},   {0x1801, 3, 9, 0},   {0x0AC1, 4, 12, 0},  {0x0521, 5, 29, 0},
+    {0x0221, 38, 33, 0}, {0x5601, 7, 6, 1},   {0x5401, 8, 14, 0},  {0x4801, 9, 14, 0},  {0x3801, 10, 14, 0},
+    {0x3001, 11, 17, 0}, {0x2401, 12, 18, 0}, {0x1C01, 13, 20, 0}, {0x1601, 29, 21, 0}, {0x5601, 15, 14, 1},
+    {0x5401, 16, 14, 0}, {0x5101, 17, 15, 0}, {0x4801, 18, 16, 0}, {0x3801, 19, 17, 0}, {0x3401, 20, 18, 0},
+    {0x3001, 21, 19, 0}, {0x2801, 22, 19, 0}, {0x2401, 23, 20, 0}, {0x2201, 24, 21, 0}, {0x1C01, 25, 22, 0},
+    {0x1801, 26, 23, 0}, {0x1601, 27, 24, 0}, {0x1401, 28, 25, 0}, {0x1201, 29, 26, 0}, {0x1101, 30, 27, 0},
+    {0x0AC1, 31, 28, 0}, {0x09C1, 32, 29, 0}, {0x08A1, 33, 30, 0}, {0x0521, 34, 31, 0}, {0x0441, 35, 32, 0},
+    {0x02A1, 36, 33, 0}, {0x0221, 37, 34, 0}, {0x0141, 38, 35, 0}, {0x0111, 39, 36, 0}, {0x0085, 40, 37, 0},
+    {0x0049, 41, 38, 0}, {0x0025, 42, 39, 0}, {0x0015, 43, 40, 0}, {0x0009, 44, 41, 0}, {0x0005, 45, 42, 0},
+    {0x0001, 45, 43, 0}, {0x5601, 46, 46, 0},
 };
 
 struct RefContext {
@@ -161,7 +161,12 @@ class T1Decoder {
   // truncation point). `planes` is the number of magnitude bit-planes coded (Mb - missing MSBs).
   T1Decoder(int width, int height, Band band, int planes, codec::t1::BlockStyle style,
             std::span<const std::uint8_t> data, std::vector<std::size_t> segment_ends)
-      : w_(width), h_(height), band_(band), planes_(planes), style_(style), data_(data),
+      : w_(width),
+        h_(height),
+        band_(band),
+        planes_(planes),
+        style_(style),
+        data_(data),
         segment_ends_(std::move(segment_ends)) {
     const auto n = static_cast<std::size_t>(w_) * static_cast<std::size_t>(h_);
     sig_.assign(n, 0);
@@ -196,8 +201,12 @@ class T1Decoder {
     const int p = plane_of(pass);
     raw_ = is_raw(pass);
     switch (kind_of(pass)) {
-      case 0: significance_pass(p); break;
-      case 1: refinement_pass(p); break;
+      case 0:
+        significance_pass(p);
+        break;
+      case 1:
+        refinement_pass(p);
+        break;
       default:
         cleanup_pass(p);
         if (style_.segmentation_symbols) {
@@ -230,7 +239,7 @@ class T1Decoder {
 
   void init_contexts() {
     for (auto& c : cx_) c = RefContext{0, 0};
-    cx_[0].index = 4;          // zero coding, all neighbours insignificant
+    cx_[0].index = 4;  // zero coding, all neighbours insignificant
     cx_[kRunLength].index = 3;
     cx_[kUniform].index = 46;
   }
@@ -248,7 +257,9 @@ class T1Decoder {
     segment_open_ = true;
   }
 
-  std::size_t at(int x, int y) const { return static_cast<std::size_t>(y) * static_cast<std::size_t>(w_) + static_cast<std::size_t>(x); }
+  std::size_t at(int x, int y) const {
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(w_) + static_cast<std::size_t>(x);
+  }
 
   // Whether neighbour (nx, ny) counts as significant for the coefficient on row y: outside the
   // block it does not; with vertically causal contexts (D.7) nor does anything in a later stripe.
@@ -310,15 +321,29 @@ class T1Decoder {
     const int hc = clamp(contribution(x - 1, y, y) + contribution(x + 1, y, y));
     const int vc = clamp(contribution(x, y - 1, y) + contribution(x, y + 1, y));
     int ctx = 9, xorbit = 0;
-    if (hc == 1 && vc == 1) ctx = 13;
-    else if (hc == 1 && vc == 0) ctx = 12;
-    else if (hc == 1 && vc == -1) ctx = 11;
-    else if (hc == 0 && vc == 1) ctx = 10;
-    else if (hc == 0 && vc == 0) ctx = 9;
-    else if (hc == 0 && vc == -1) { ctx = 10; xorbit = 1; }
-    else if (hc == -1 && vc == 1) { ctx = 11; xorbit = 1; }
-    else if (hc == -1 && vc == 0) { ctx = 12; xorbit = 1; }
-    else { ctx = 13; xorbit = 1; }
+    if (hc == 1 && vc == 1)
+      ctx = 13;
+    else if (hc == 1 && vc == 0)
+      ctx = 12;
+    else if (hc == 1 && vc == -1)
+      ctx = 11;
+    else if (hc == 0 && vc == 1)
+      ctx = 10;
+    else if (hc == 0 && vc == 0)
+      ctx = 9;
+    else if (hc == 0 && vc == -1) {
+      ctx = 10;
+      xorbit = 1;
+    } else if (hc == -1 && vc == 1) {
+      ctx = 11;
+      xorbit = 1;
+    } else if (hc == -1 && vc == 0) {
+      ctx = 12;
+      xorbit = 1;
+    } else {
+      ctx = 13;
+      xorbit = 1;
+    }
     return mq_.decode(cx_[ctx]) ^ xorbit;
   }
 

@@ -91,7 +91,8 @@ int count_decode_errors(std::span<const std::uint8_t> data, const std::vector<Sy
   t1ref::MqDecoder dec(data);
   std::vector<t1ref::RefContext> cx(static_cast<std::size_t>(contexts));
   int wrong = 0;
-  for (std::size_t i = 0; i < n; ++i) wrong += dec.decode(cx[static_cast<std::size_t>(symbols[i].context)]) != symbols[i].bit;
+  for (std::size_t i = 0; i < n; ++i)
+    wrong += dec.decode(cx[static_cast<std::size_t>(symbols[i].context)]) != symbols[i].bit;
   return wrong;
 }
 
@@ -137,8 +138,8 @@ TEST(MqCoder, TruncationLengthsAreSafe) {
       ASSERT_GE(length, previous);
       previous = length;
       const std::span<const std::uint8_t> cut(out.data(), length);
-      ASSERT_EQ(count_decode_errors(cut, symbols, n, contexts), 0) << "seed " << seed << " after " << n << " symbols, "
-                                                                   << length << " of " << out.size() << " bytes";
+      ASSERT_EQ(count_decode_errors(cut, symbols, n, contexts), 0)
+          << "seed " << seed << " after " << n << " symbols, " << length << " of " << out.size() << " bytes";
     }
   }
 }
@@ -169,13 +170,20 @@ enum class Dist { Zero, Single, Sparse, Dense, Laplacian, Large, Huge };
 
 const char* dist_name(Dist d) {
   switch (d) {
-    case Dist::Zero: return "zero";
-    case Dist::Single: return "single";
-    case Dist::Sparse: return "sparse";
-    case Dist::Dense: return "dense";
-    case Dist::Laplacian: return "laplacian";
-    case Dist::Large: return "large";
-    case Dist::Huge: return "huge";
+    case Dist::Zero:
+      return "zero";
+    case Dist::Single:
+      return "single";
+    case Dist::Sparse:
+      return "sparse";
+    case Dist::Dense:
+      return "dense";
+    case Dist::Laplacian:
+      return "laplacian";
+    case Dist::Large:
+      return "large";
+    case Dist::Huge:
+      return "huge";
   }
   return "?";
 }
@@ -192,9 +200,12 @@ Block make_block(Dist d, int w, int h, std::mt19937& rng) {
   auto signed_value = [&](std::int64_t magnitude) {
     return static_cast<std::int32_t>(coin(rng) ? -magnitude : magnitude);
   };
-  auto magnitude_below = [&](std::int64_t limit) { return std::uniform_int_distribution<std::int64_t>(0, limit - 1)(rng); };
+  auto magnitude_below = [&](std::int64_t limit) {
+    return std::uniform_int_distribution<std::int64_t>(0, limit - 1)(rng);
+  };
   switch (d) {
-    case Dist::Zero: break;
+    case Dist::Zero:
+      break;
     case Dist::Single:
       b.c[std::uniform_int_distribution<std::size_t>(0, n - 1)(rng)] = signed_value(1 + magnitude_below(4095));
       break;
@@ -227,10 +238,14 @@ Block make_block(Dist d, int w, int h, std::mt19937& rng) {
 
 t1ref::Band band_of(Orientation o) {
   switch (o) {
-    case Orientation::LL: return t1ref::Band::LL;
-    case Orientation::HL: return t1ref::Band::HL;
-    case Orientation::LH: return t1ref::Band::LH;
-    case Orientation::HH: return t1ref::Band::HH;
+    case Orientation::LL:
+      return t1ref::Band::LL;
+    case Orientation::HL:
+      return t1ref::Band::HL;
+    case Orientation::LH:
+      return t1ref::Band::LH;
+    case Orientation::HH:
+      return t1ref::Band::HH;
   }
   return t1ref::Band::LL;
 }
@@ -311,7 +326,8 @@ void check_block(const Block& b, int w, int h, Orientation o, BlockStyle style, 
     claimed -= last.distortion_decrease;
     std::vector<std::size_t> ends;
     for (int j = 0; j < k - 1; ++j)
-      if (enc.passes[static_cast<std::size_t>(j)].terminated) ends.push_back(enc.passes[static_cast<std::size_t>(j)].length);
+      if (enc.passes[static_cast<std::size_t>(j)].terminated)
+        ends.push_back(enc.passes[static_cast<std::size_t>(j)].length);
     ends.push_back(last.length);
     const std::span<const std::uint8_t> cut(enc.data.data(), last.length);
     t1ref::T1Decoder dec(w, h, band_of(o), planes, style, cut, ends);
@@ -336,9 +352,9 @@ std::vector<Size> all_sizes() {
   std::vector<Size> s;
   for (int w = 4; w <= 64; w *= 2)
     for (int h = 4; h <= 64; h *= 2) s.push_back({w, h});
-  for (Size extra : {Size{32, 128}, Size{128, 32}, Size{1024, 4}, Size{4, 1024}, Size{1, 1}, Size{3, 5}, Size{7, 64},
-                     Size{64, 7}, Size{5, 3}, Size{2, 2}, Size{1, 9}, Size{13, 17}, Size{1024, 1}, Size{1, 1024},
-                     Size{61, 3}})
+  for (Size extra :
+       {Size{32, 128}, Size{128, 32}, Size{1024, 4}, Size{4, 1024}, Size{1, 1}, Size{3, 5}, Size{7, 64}, Size{64, 7},
+        Size{5, 3}, Size{2, 2}, Size{1, 9}, Size{13, 17}, Size{1024, 1}, Size{1, 1024}, Size{61, 3}})
     s.push_back(extra);
   return s;
 }
@@ -404,8 +420,8 @@ TEST(T1, RoundTripsLargeMagnitudes) {
   std::mt19937 rng(31);
   const Size sizes[] = {{4, 4}, {3, 5}, {16, 16}, {64, 64}, {1024, 4}};
   std::size_t rotation = 0;
-  for (BlockStyle st : {BlockStyle{}, BlockStyle::from_spcod(0x01), BlockStyle::from_spcod(0x3F),
-                        BlockStyle::from_spcod(0x19)})
+  for (BlockStyle st :
+       {BlockStyle{}, BlockStyle::from_spcod(0x01), BlockStyle::from_spcod(0x3F), BlockStyle::from_spcod(0x19)})
     for (Size s : sizes)
       for (Dist d : {Dist::Large, Dist::Huge})
         for (Orientation o : orientations_for(s, rotation++)) {
@@ -451,7 +467,8 @@ std::vector<std::int64_t> reference_after(const EncodedBlock& enc, int w, int h,
   const auto& last = enc.passes[static_cast<std::size_t>(k - 1)];
   std::vector<std::size_t> ends;
   for (int j = 0; j < k - 1; ++j)
-    if (enc.passes[static_cast<std::size_t>(j)].terminated) ends.push_back(enc.passes[static_cast<std::size_t>(j)].length);
+    if (enc.passes[static_cast<std::size_t>(j)].terminated)
+      ends.push_back(enc.passes[static_cast<std::size_t>(j)].length);
   ends.push_back(last.length);
   const std::span<const std::uint8_t> cut(enc.data.data(), last.length);
   t1ref::T1Decoder dec(w, h, band_of(o), planes, style, cut, ends);
@@ -487,8 +504,8 @@ void check_reconstruction(const Block& b, int w, int h, Orientation o, BlockStyl
     for (std::size_t i = 0; i < ref.size(); ++i) {
       const std::int64_t r = ref[i];
       ASSERT_EQ(exact[i], static_cast<float>(r))
-          << "final_offset 0, after " << k << " of " << total << " passes, coefficient " << i % static_cast<std::size_t>(w)
-          << "," << i / static_cast<std::size_t>(w) << " = " << b.c[i];
+          << "final_offset 0, after " << k << " of " << total << " passes, coefficient "
+          << i % static_cast<std::size_t>(w) << "," << i / static_cast<std::size_t>(w) << " = " << b.c[i];
       const bool knows_plane0 = r != 0 && plane0 && (!plane0_spp || r == 1 || r == -1);
       const double shifted = static_cast<double>(r) + (knows_plane0 ? (r < 0 ? -0.5 : 0.5) : 0.0);
       ASSERT_EQ(offset[i], static_cast<float>(shifted))
@@ -523,8 +540,8 @@ TEST(T1Reconstruction, MatchesReferenceDecoderForLargeMagnitudes) {
   std::mt19937 rng(99);
   const Size sizes[] = {{3, 5}, {16, 16}, {64, 64}};
   std::size_t rotation = 0;
-  for (BlockStyle st : {BlockStyle{}, BlockStyle::from_spcod(0x01), BlockStyle::from_spcod(0x08),
-                        BlockStyle::from_spcod(0x3F)})
+  for (BlockStyle st :
+       {BlockStyle{}, BlockStyle::from_spcod(0x01), BlockStyle::from_spcod(0x08), BlockStyle::from_spcod(0x3F)})
     for (Size s : sizes)
       for (Dist d : {Dist::Large, Dist::Huge})
         for (Orientation o : orientations_for(s, rotation++)) {
@@ -589,17 +606,14 @@ TEST(T1Reconstruction, SignificancePropagatesInScanOrderOnly) {
   const Block b{{0, 0, 1, 1, 4, 1, 0, 0}, 3};
   // 4 (known down to plane 1) reconstructs at 5. Row 2 comes before row 3 in the scan and has no
   // significant neighbour then; row 3 has 4 below; row 5 has 4 above.
-  EXPECT_EQ(reconstructed(b, 1, 8, Orientation::LL, {}, 5, 0.5f),
-            (std::vector<float>{0, 0, 0, 1.5f, 5, 1.5f, 0, 0}));
+  EXPECT_EQ(reconstructed(b, 1, 8, Orientation::LL, {}, 5, 0.5f), (std::vector<float>{0, 0, 0, 1.5f, 5, 1.5f, 0, 0}));
   // Vertically causal: row 3, last of its stripe, does not see the stripe below.
   const BlockStyle causal = BlockStyle::from_spcod(0x08);
-  EXPECT_EQ(reconstructed(b, 1, 8, Orientation::LL, causal, 5, 0.5f),
-            (std::vector<float>{0, 0, 0, 0, 5, 1.5f, 0, 0}));
+  EXPECT_EQ(reconstructed(b, 1, 8, Orientation::LL, causal, 5, 0.5f), (std::vector<float>{0, 0, 0, 0, 5, 1.5f, 0, 0}));
   // The refinement pass of plane 0 then fixes 4; the cleanup pass codes the rest.
   EXPECT_EQ(reconstructed(b, 1, 8, Orientation::LL, causal, 6, 0.5f),
             (std::vector<float>{0, 0, 0, 0, 4.5f, 1.5f, 0, 0}));
-  EXPECT_EQ(reconstructed(b, 1, 8, Orientation::LL, causal, 7, 0.0f),
-            (std::vector<float>{0, 0, 1, 1, 4, 1, 0, 0}));
+  EXPECT_EQ(reconstructed(b, 1, 8, Orientation::LL, causal, 7, 0.0f), (std::vector<float>{0, 0, 1, 1, 4, 1, 0, 0}));
   // Along a row, within a stripe: newly significant coefficients propagate to the right only.
   const Block row{{1, 1, 1, 4, 1, 1}, 3};
   EXPECT_EQ(reconstructed(row, 6, 1, Orientation::HH, {}, 5, 0.5f), (std::vector<float>{0, 0, 1.5f, 5, 1.5f, 1.5f}));
@@ -701,10 +715,11 @@ TEST(MqCoder, MinimalTruncationLengthsAreExact) {
       previous = length;
     }
   }
-  std::printf("%ld points: %ld (%.1f%%) shorter than the safe length, %.3f bytes less on average; %ld cut more than "
-              "one byte before the bytes committed; %ld need no byte\n",
-              points, shorter, 100.0 * static_cast<double>(shorter) / static_cast<double>(points),
-              static_cast<double>(saved) / static_cast<double>(points), before_committed, free_points);
+  std::printf(
+      "%ld points: %ld (%.1f%%) shorter than the safe length, %.3f bytes less on average; %ld cut more than "
+      "one byte before the bytes committed; %ld need no byte\n",
+      points, shorter, 100.0 * static_cast<double>(shorter) / static_cast<double>(points),
+      static_cast<double>(saved) / static_cast<double>(points), before_committed, free_points);
   EXPECT_GT(before_committed, 0);  // the 1-fill run case is exercised
 }
 
@@ -735,7 +750,8 @@ void check_minimal_lengths(const Block& b, int w, int h, Orientation o, BlockSty
   auto decodes_right = [&](int k, std::size_t length) {
     std::vector<std::size_t> ends;
     for (int j = 0; j < k; ++j)
-      if (enc.passes[static_cast<std::size_t>(j)].terminated) ends.push_back(enc.passes[static_cast<std::size_t>(j)].length);
+      if (enc.passes[static_cast<std::size_t>(j)].terminated)
+        ends.push_back(enc.passes[static_cast<std::size_t>(j)].length);
     ends.push_back(length);
     t1ref::T1Decoder dec(w, h, band_of(o), planes, style, std::span(enc.data.data(), length), ends);
     for (int j = 0; j <= k; ++j) dec.decode_pass();
@@ -833,15 +849,15 @@ TEST(T1Golden, EveryCodewordLengthAndDistortionAsRecorded) {
     for (Size s : sizes)
       for (Dist d : {Dist::Zero, Dist::Single, Dist::Sparse, Dist::Dense, Dist::Laplacian, Dist::Large, Dist::Huge})
         for (bool with_fractions : {false, true}) {
-            const Orientation o = kOrientations[blocks % 4];  // rotating: every one meets every case
-            const Block b = make_block(d, s.w, s.h, rng);
-            std::vector<std::uint8_t> fractions;
-            if (with_fractions)
-              for (std::size_t i = 0; i < b.c.size(); ++i)
-                fractions.push_back(static_cast<std::uint8_t>(std::uniform_int_distribution<int>(0, 255)(rng)));
-            digest_block(dg, codec::t1::encode_block(b.c, s.w, s.h, o, b.mb, st, fractions));
-            ++blocks;
-          }
+          const Orientation o = kOrientations[blocks % 4];  // rotating: every one meets every case
+          const Block b = make_block(d, s.w, s.h, rng);
+          std::vector<std::uint8_t> fractions;
+          if (with_fractions)
+            for (std::size_t i = 0; i < b.c.size(); ++i)
+              fractions.push_back(static_cast<std::uint8_t>(std::uniform_int_distribution<int>(0, 255)(rng)));
+          digest_block(dg, codec::t1::encode_block(b.c, s.w, s.h, o, b.mb, st, fractions));
+          ++blocks;
+        }
   EXPECT_EQ(blocks, 8190u);
   EXPECT_EQ(dg.h, 0x782c1de8dce204c0ull) << std::hex << "digest 0x" << dg.h;
 }
@@ -861,7 +877,8 @@ TEST(T1InPlace, SameCodewordsAsFromCopiedIndices) {
       for (Orientation o : kOrientations) {
         const int stride = s.w + 7;  // the block sits inside a wider plane, one row of margin above
         std::vector<float> plane(static_cast<std::size_t>(stride) * static_cast<std::size_t>(s.h + 1));
-        for (float& v : plane) v = coefficient(rng) * (std::uniform_int_distribution<int>(0, 3)(rng) == 0 ? 8.0f : 1.0f);
+        for (float& v : plane)
+          v = coefficient(rng) * (std::uniform_int_distribution<int>(0, 3)(rng) == 0 ? 8.0f : 1.0f);
         const float inverse_step = 1.0f / 0.37f;
         const float* origin = plane.data() + stride + 3;
         std::vector<std::int32_t> indices;
@@ -894,10 +911,11 @@ TEST(T1InPlace, SameCodewordsAsFromCopiedIndices) {
         for (const bool lossy : {true, false}) {
           const EncodedBlock& measured = lossy ? in_place : exact_in_place;
           const EncodedBlock skipped =
-              lossy ? codec::t1::encode_block(codec::t1::FloatBlock{origin, stride, s.w, s.h, inverse_step}, o, 31, st, {},
-                                              codec::t1::Distortion::Skipped)
-                    : codec::t1::encode_block(codec::t1::IntegerBlock{integer_plane.data() + stride + 3, stride, s.w, s.h},
-                                              o, 31, st, {}, codec::t1::Distortion::Skipped);
+              lossy ? codec::t1::encode_block(codec::t1::FloatBlock{origin, stride, s.w, s.h, inverse_step}, o, 31, st,
+                                              {}, codec::t1::Distortion::Skipped)
+                    : codec::t1::encode_block(
+                          codec::t1::IntegerBlock{integer_plane.data() + stride + 3, stride, s.w, s.h}, o, 31, st, {},
+                          codec::t1::Distortion::Skipped);
           EXPECT_EQ(skipped.data, measured.data);
           EXPECT_EQ(skipped.energy, measured.energy);
           ASSERT_EQ(skipped.passes.size(), measured.passes.size());
@@ -939,8 +957,8 @@ TEST(T1StopRule, BlocksWorthNoPassAreNotCoded) {
     auto encode = [&](codec::t1::StopRule stop) {
       return from_floats ? codec::t1::encode_block(codec::t1::FloatBlock{plane.data(), stride, w, h, inverse_step},
                                                    Orientation::HH, 20, {}, stop)
-                         : codec::t1::encode_block(codec::t1::IntegerBlock{indices.data(), stride, w, h}, Orientation::HH,
-                                                   20, {}, stop);
+                         : codec::t1::encode_block(codec::t1::IntegerBlock{indices.data(), stride, w, h},
+                                                   Orientation::HH, 20, {}, stop);
     };
     const EncodedBlock full = encode({});
     ASSERT_GT(full.bit_planes, 2);

@@ -120,7 +120,8 @@ class TagTreeDecoder {
     bool known = false;
   };
   Node& node(int level, int x, int y) {
-    return nodes_[static_cast<std::size_t>(level)][static_cast<std::size_t>(y) * dims_[static_cast<std::size_t>(level)].first + x];
+    return nodes_[static_cast<std::size_t>(level)]
+                 [static_cast<std::size_t>(y) * dims_[static_cast<std::size_t>(level)].first + x];
   }
   std::vector<std::pair<int, int>> dims_;
   std::vector<std::vector<Node>> nodes_;
@@ -284,8 +285,8 @@ void tag_tree_round_trip(int width, int height, std::mt19937& rng) {
 
 TEST(TagTree, RoundTripsManyShapes) {
   std::mt19937 rng(2024);
-  const std::vector<std::pair<int, int>> shapes = {{1, 1}, {1, 7}, {9, 1}, {1, 33}, {33, 1}, {5, 3},
-                                                   {3, 5}, {2, 2}, {16, 16}, {7, 13}};
+  const std::vector<std::pair<int, int>> shapes = {{1, 1}, {1, 7}, {9, 1}, {1, 33},  {33, 1},
+                                                   {5, 3}, {3, 5}, {2, 2}, {16, 16}, {7, 13}};
   for (auto [w, h] : shapes)
     for (int round = 0; round < 30; ++round) {
       tag_tree_round_trip(w, h, rng);
@@ -409,7 +410,8 @@ class TestPrecinctReader {
       for (Contribution& c : band) {
         const std::uint64_t total = std::accumulate(c.lengths.begin(), c.lengths.end(), std::uint64_t{0});
         if (pos + total > s.size()) throw std::runtime_error("packet body runs past the data");
-        c.bytes.assign(s.begin() + static_cast<std::ptrdiff_t>(pos), s.begin() + static_cast<std::ptrdiff_t>(pos + total));
+        c.bytes.assign(s.begin() + static_cast<std::ptrdiff_t>(pos),
+                       s.begin() + static_cast<std::ptrdiff_t>(pos + total));
         pos += total;
       }
     return p;
@@ -494,8 +496,8 @@ Plan random_plan(std::mt19937& rng, const BlockStyle& style) {
 }
 
 struct Coverage {
-  int packets = 0, empty_packets = 0, ff_header_bytes = 0, multi_piece = 0, first_inclusions = 0,
-      long_pass_codes = 0, late_inclusions = 0;
+  int packets = 0, empty_packets = 0, ff_header_bytes = 0, multi_piece = 0, first_inclusions = 0, long_pass_codes = 0,
+      late_inclusions = 0;
 };
 
 // Writes every layer of a random plan and checks each field the independent reader recovers.
@@ -543,7 +545,9 @@ void check_plan(const Plan& plan, const BlockStyle& style, std::mt19937& rng, Co
         if (added >= 37) ++cov.long_pass_codes;
         // Expected pieces straight from the pass lengths.
         const auto& passes = cb.encoded->passes;
-        auto upto = [&](int pass) -> std::uint64_t { return pass < 0 ? 0 : passes[static_cast<std::size_t>(pass)].length; };
+        auto upto = [&](int pass) -> std::uint64_t {
+          return pass < 0 ? 0 : passes[static_cast<std::size_t>(pass)].length;
+        };
         std::vector<std::uint64_t> expect;
         int start = before;
         for (int pass = before; pass < before + added; ++pass)
@@ -589,9 +593,10 @@ TEST_P(PacketRoundTrip, RandomPlansDecodeIndependently) {
     }
   }
   // The random plans did reach the cases they are meant to reach.
-  std::printf("packets %d, empty %d, 0xFF header bytes %d, first inclusions %d (late %d), 37+ pass codes %d, multi-piece %d\n",
-              cov.packets, cov.empty_packets, cov.ff_header_bytes, cov.first_inclusions, cov.late_inclusions,
-              cov.long_pass_codes, cov.multi_piece);
+  std::printf(
+      "packets %d, empty %d, 0xFF header bytes %d, first inclusions %d (late %d), 37+ pass codes %d, multi-piece %d\n",
+      cov.packets, cov.empty_packets, cov.ff_header_bytes, cov.first_inclusions, cov.late_inclusions,
+      cov.long_pass_codes, cov.multi_piece);
   EXPECT_GT(cov.empty_packets, 50);
   EXPECT_GT(cov.ff_header_bytes, 10);
   EXPECT_GT(cov.late_inclusions, 50);
@@ -665,7 +670,8 @@ TEST(PacketWriter, BypassSplitsAfterTheFourthBitPlane) {
 // need Lblock raised.)
 TEST(PacketWriter, HtBlocksSignalCleanupAndRefinementSegments) {
   const EncodedBlock enc = block_with_lengths({5, 9, 20}, 0);
-  PrecinctPacketWriter writer({PrecinctBand{1, 1, {CodeBlockCoding{&enc, {3}}}}}, BlockStyle{}, codec::t2::BlockCoder::Ht);
+  PrecinctPacketWriter writer({PrecinctBand{1, 1, {CodeBlockCoding{&enc, {3}}}}}, BlockStyle{},
+                              codec::t2::BlockCoder::Ht);
   Bytes out;
   writer.write_packet(0, false, false, 0, out);
   // 1 non-empty | 1 inclusion | 1 zero bit-planes = 0 | 1100 three passes | 0 Lblock stays 3 |

@@ -50,9 +50,9 @@ wa::WaveletEngine* gpu_engine(std::string& why) {
   return engine.get();
 }
 
-#define REQUIRE_GPU(engine_var)                                                              \
-  std::string gpu_failure;                                                                   \
-  wa::WaveletEngine* engine_var = gpu_engine(gpu_failure);                                   \
+#define REQUIRE_GPU(engine_var)                            \
+  std::string gpu_failure;                                 \
+  wa::WaveletEngine* engine_var = gpu_engine(gpu_failure); \
   if (!engine_var) GTEST_SKIP() << "no GL context can be created here: " << gpu_failure
 
 imageio::Image photo_like(int width, int height, int channels = 3) {
@@ -135,7 +135,7 @@ TEST(Edit, AllFactorsOneReproducesTheInputOnTheCpu) {
     s.space = space;
     s.bands = {wa::parse_scale_spec("*=1", wa::channel_names(3, space), 4)};
     const imageio::Image floats = wa::from_planes(wa::edit_planes(image, s, cpu_engine()), space);
-    EXPECT_LT(max_difference(floats.pixels, image.pixels), 1e-3f);  // float rounding on 0..255
+    EXPECT_LT(max_difference(floats.pixels, image.pixels), 1e-3f);           // float rounding on 0..255
     EXPECT_EQ(wa::edit_image(image, s, cpu_engine()).pixels, image.pixels);  // exact after rounding
   }
 }
@@ -379,17 +379,22 @@ TEST(Deform, TheSurfaceIsAValidClosedMeshAndNetsRoundTripThroughFiles) {
     // Closed: every edge is shared by exactly two triangles, in opposite directions.
     std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
     for (std::size_t t = 0; t < mesh.indices.size(); t += 3)
-      for (int e = 0; e < 3; ++e) ++edges[{mesh.indices[t + static_cast<std::size_t>(e)], mesh.indices[t + static_cast<std::size_t>((e + 1) % 3)]}];
+      for (int e = 0; e < 3; ++e)
+        ++edges[{mesh.indices[t + static_cast<std::size_t>(e)],
+                 mesh.indices[t + static_cast<std::size_t>((e + 1) % 3)]}];
     for (const auto& [edge, count] : edges) {
       ASSERT_EQ(count, 1) << "edge " << edge.first << "-" << edge.second;
-      ASSERT_EQ(edges.count({edge.second, edge.first}), 1u) << "edge " << edge.first << "-" << edge.second << " is open";
+      ASSERT_EQ(edges.count({edge.second, edge.first}), 1u)
+          << "edge " << edge.first << "-" << edge.second << " is open";
     }
   }
   test_support::ScratchDir dir("wavelet_apps");
   for (const char* name : {"net.net", "net.ply"}) {
     const auto path = dir / name;
-    if (std::string(name).ends_with(".ply")) wa::write_control_net_ply(path, deformed);
-    else wa::write_control_net_text(path, deformed);
+    if (std::string(name).ends_with(".ply"))
+      wa::write_control_net_ply(path, deformed);
+    else
+      wa::write_control_net_text(path, deformed);
     const wa::ControlNet back = wa::read_control_net(path);
     EXPECT_EQ(back.rows, deformed.rows);
     EXPECT_EQ(back.columns, deformed.columns);
@@ -401,8 +406,8 @@ TEST(Deform, TheSurfaceIsAValidClosedMeshAndNetsRoundTripThroughFiles) {
 TEST(Deform, RejectsMalformedNetsAndTooManyLevels) {
   test_support::ScratchDir dir("wavelet_apps");
   const auto path = dir / "bad.net";
-  for (const char* text : {"controlnet 2 2\n0 0 0\n1 0 0\n0 1 0\n", "controlnet 1 2\n0 0 x\n1 0 0\n",
-                           "grid 2 2\n", "controlnet 2 2 twisted\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n"}) {
+  for (const char* text : {"controlnet 2 2\n0 0 0\n1 0 0\n0 1 0\n", "controlnet 1 2\n0 0 x\n1 0 0\n", "grid 2 2\n",
+                           "controlnet 2 2 twisted\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n"}) {
     std::ofstream(path) << text;
     EXPECT_THROW(wa::read_control_net(path), wa::AppError) << text;
   }

@@ -15,9 +15,12 @@ Boundary parse_boundary(std::string_view name) {
 
 std::string_view boundary_name(Boundary b) {
   switch (b) {
-    case Boundary::Symmetric: return "sym";
-    case Boundary::Periodic: return "per";
-    case Boundary::Zero: return "zero";
+    case Boundary::Symmetric:
+      return "sym";
+    case Boundary::Periodic:
+      return "per";
+    case Boundary::Zero:
+      return "zero";
   }
   return "?";
 }

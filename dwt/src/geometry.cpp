@@ -31,10 +31,14 @@ LayoutRect band_rect(const std::vector<LevelGeometry>& levels, int level, Orient
   const LevelGeometry& g = levels[static_cast<std::size_t>(level - 1)];
   const int lx = g.x.low_count(), ly = g.y.low_count();
   switch (o) {
-    case Orientation::LL: return {0, 0, lx, ly};
-    case Orientation::HL: return {lx, 0, g.x.length - lx, ly};
-    case Orientation::LH: return {0, ly, lx, g.y.length - ly};
-    case Orientation::HH: return {lx, ly, g.x.length - lx, g.y.length - ly};
+    case Orientation::LL:
+      return {0, 0, lx, ly};
+    case Orientation::HL:
+      return {lx, 0, g.x.length - lx, ly};
+    case Orientation::LH:
+      return {0, ly, lx, g.y.length - ly};
+    case Orientation::HH:
+      return {lx, ly, g.x.length - lx, g.y.length - ly};
   }
   return {};
 }

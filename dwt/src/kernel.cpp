@@ -15,8 +15,6 @@ constexpr double kGamma = 0.882911075530934;
 constexpr double kDelta = 0.443506852043971;
 constexpr double kK = 1.230174104914001;
 
-
-
 int class_at(std::size_t i, int parity0) { return static_cast<int>((i + static_cast<std::size_t>(parity0)) & 1u); }
 
 // Impulse responses of the lifting network give the convolution taps, so the GPU convolves with
@@ -73,8 +71,8 @@ const std::array<Kernel, 4>& all_kernels() {
       make(KernelId::Float53, "53f", "5/3 in floating point", false,
            {{SampleClass::High, -0.5, -0.5}, {SampleClass::Low, 0.25, 0.25}}, 1.0, 1.0),
       // Haar with the same gains: low = (x0 + x1) / 2, high = x1 - x0.
-      make(KernelId::Haar, "haar", "Haar", false,
-           {{SampleClass::High, -1.0, 0.0}, {SampleClass::Low, 0.0, 0.5}}, 1.0, 1.0),
+      make(KernelId::Haar, "haar", "Haar", false, {{SampleClass::High, -1.0, 0.0}, {SampleClass::Low, 0.0, 0.5}}, 1.0,
+           1.0),
   };
   return kernels;
 }
@@ -95,7 +93,6 @@ void lift_inverse_f64(const Kernel& k, std::vector<double>& y, int parity0) {
   for (auto it = k.steps.rbegin(); it != k.steps.rend(); ++it)
     for (std::size_t i = 1; i + 1 < n; ++i)
       if (class_at(i, parity0) == static_cast<int>(it->target)) y[i] -= it->left * y[i - 1] + it->right * y[i + 1];
-
 }
 
 const Kernel& get_kernel(KernelId id) {

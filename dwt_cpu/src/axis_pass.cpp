@@ -17,11 +17,11 @@ constexpr std::size_t kVerticalLanes = 64;
 constexpr std::size_t kRowsPerTask = 16;
 
 struct Layout {
-  int n;          // samples along the axis
-  int lanes;      // independent signals (rows for horizontal, columns for vertical)
-  int pad;        // extension lines on each side of the strip
-  int parity;     // reference-grid parity of the first sample
-  int low;        // low-pass count
+  int n;       // samples along the axis
+  int lanes;   // independent signals (rows for horizontal, columns for vertical)
+  int pad;     // extension lines on each side of the strip
+  int parity;  // reference-grid parity of the first sample
+  int low;     // low-pass count
   std::size_t strip_lanes;
 };
 

@@ -9,7 +9,8 @@
 
 namespace dwt_cpu {
 
-CpuBackend::CpuBackend(int threads) : owned_pool_(std::make_unique<base::ThreadPool>(threads)), pool_(owned_pool_.get()) {}
+CpuBackend::CpuBackend(int threads)
+    : owned_pool_(std::make_unique<base::ThreadPool>(threads)), pool_(owned_pool_.get()) {}
 
 CpuBackend::CpuBackend(base::ThreadPool& pool) : pool_(&pool) {}
 

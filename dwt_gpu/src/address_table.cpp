@@ -49,8 +49,7 @@ std::vector<AddressTexel> inverse_row(dwt::AxisSpan span, int pad, dwt::Boundary
   return row;
 }
 
-AddressTable build_table(const std::vector<dwt::LevelGeometry>& levels, int pad, dwt::Boundary boundary,
-                         bool inverse) {
+AddressTable build_table(const std::vector<dwt::LevelGeometry>& levels, int pad, dwt::Boundary boundary, bool inverse) {
   AddressTable table;
   table.pad = pad;
   table.rows = std::max(1, 2 * static_cast<int>(levels.size()));
@@ -61,9 +60,8 @@ AddressTable build_table(const std::vector<dwt::LevelGeometry>& levels, int pad,
     for (bool vertical : {false, true}) {
       const dwt::AxisSpan span = vertical ? levels[d].y : levels[d].x;
       const auto row = inverse ? inverse_row(span, pad, boundary) : forward_row(span, pad, boundary);
-      float* out = table.rgba.data() +
-                   static_cast<std::size_t>(AddressTable::row_of(static_cast<int>(d), vertical)) *
-                       static_cast<std::size_t>(table.width) * 4;
+      float* out = table.rgba.data() + static_cast<std::size_t>(AddressTable::row_of(static_cast<int>(d), vertical)) *
+                                           static_cast<std::size_t>(table.width) * 4;
       for (std::size_t i = 0; i < row.size(); ++i) {
         out[4 * i + 0] = row[i].address;
         out[4 * i + 1] = row[i].alpha;

@@ -55,7 +55,8 @@ KernelBank kernel_bank(const dwt::Kernel& kernel, bool inverse) {
   const auto& taps = inverse ? kernel.synthesis : kernel.analysis;
   for (int sel = 0; sel < 2; ++sel)
     for (int t = 0; t < kTapsPerSelector; ++t)
-      bank[static_cast<std::size_t>(sel * kTapsPerSelector + t)] = static_cast<float>(taps[static_cast<std::size_t>(sel)][static_cast<std::size_t>(t)]);
+      bank[static_cast<std::size_t>(sel * kTapsPerSelector + t)] =
+          static_cast<float>(taps[static_cast<std::size_t>(sel)][static_cast<std::size_t>(t)]);
   bank[2 * kTapsPerSelector + dwt::Kernel::kMaxRadius] = 1.0f;
   bank[3 * kTapsPerSelector + dwt::Kernel::kMaxRadius] = inverse ? 0.5f : 2.0f;
   return bank;

@@ -85,7 +85,8 @@ std::string GpuBackend::renderer() {
 }
 
 std::string GpuBackend::name() const {
-  return "gpu fragment shaders (" + (state_ ? state_->context->renderer() : std::string("context not yet created")) + ")";
+  return "gpu fragment shaders (" + (state_ ? state_->context->renderer() : std::string("context not yet created")) +
+         ")";
 }
 
 bool GpuBackend::supports(dwt::KernelId kernel) const { return !dwt::get_kernel(kernel).reversible; }

@@ -17,11 +17,16 @@ std::unique_ptr<detail::Backend> create_backend(Platform platform, bool auto_mod
   switch (platform) {
     // An explicit egl-device request may fall back to Mesa's software device;
     // Auto must not, or it would never reach the later, intended fallbacks.
-    case Platform::EglDevice: return detail::create_egl_device_backend(!auto_mode);
-    case Platform::EglSurfaceless: return detail::create_egl_surfaceless_backend();
-    case Platform::EglDefault: return detail::create_egl_default_backend();
-    case Platform::OsMesa: return detail::create_osmesa_backend();
-    case Platform::Auto: break;
+    case Platform::EglDevice:
+      return detail::create_egl_device_backend(!auto_mode);
+    case Platform::EglSurfaceless:
+      return detail::create_egl_surfaceless_backend();
+    case Platform::EglDefault:
+      return detail::create_egl_default_backend();
+    case Platform::OsMesa:
+      return detail::create_osmesa_backend();
+    case Platform::Auto:
+      break;
   }
   throw GlError("internal: no backend for platform");
 }
@@ -37,8 +42,7 @@ std::unique_ptr<Context> Context::create(Platform platform) {
   const bool auto_mode = platform == Platform::Auto;
   std::vector<Platform> candidates;
   if (auto_mode) {
-    candidates = {Platform::EglDevice, Platform::EglSurfaceless, Platform::EglDefault,
-                  Platform::OsMesa};
+    candidates = {Platform::EglDevice, Platform::EglSurfaceless, Platform::EglDefault, Platform::OsMesa};
   } else {
     candidates = {platform};
   }
@@ -72,8 +76,8 @@ std::unique_ptr<Context> Context::create_hardware() {
 bool is_software_renderer(std::string_view renderer) {
   std::string low(renderer);
   for (char& c : low) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  for (std::string_view name : {"llvmpipe", "softpipe", "swrast", "lavapipe", "swiftshader", "software rasterizer",
-                                "basic render driver"})
+  for (std::string_view name :
+       {"llvmpipe", "softpipe", "swrast", "lavapipe", "swiftshader", "software rasterizer", "basic render driver"})
     if (low.find(name) != std::string::npos) return true;
   return false;
 }

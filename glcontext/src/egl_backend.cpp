@@ -26,8 +26,7 @@ void EglBackend::create_context() {
   // Version and profile attributes need EGL 1.5 or EGL_KHR_create_context;
   // without them we would silently get a legacy 2.1/3.0 context.
   if (!v15 && !has_extension(extensions, "EGL_KHR_create_context")) {
-    throw GlError("EGL " + std::to_string(display_.major()) + "." +
-                  std::to_string(display_.minor()) +
+    throw GlError("EGL " + std::to_string(display_.major()) + "." + std::to_string(display_.minor()) +
                   " without EGL_KHR_create_context cannot request a core profile");
   }
   const bool surfaceless = has_extension(extensions, "EGL_KHR_surfaceless_context");
@@ -37,11 +36,16 @@ void EglBackend::create_context() {
 
   // EGL_SURFACE_TYPE 0 means "no surface requirement" (we never need one).
   const EGLint config_attribs[] = {
-      EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-      EGL_SURFACE_TYPE,    surfaceless ? 0 : EGL_PBUFFER_BIT,
-      EGL_RED_SIZE,        8,
-      EGL_GREEN_SIZE,      8,
-      EGL_BLUE_SIZE,       8,
+      EGL_RENDERABLE_TYPE,
+      EGL_OPENGL_BIT,
+      EGL_SURFACE_TYPE,
+      surfaceless ? 0 : EGL_PBUFFER_BIT,
+      EGL_RED_SIZE,
+      8,
+      EGL_GREEN_SIZE,
+      8,
+      EGL_BLUE_SIZE,
+      8,
       EGL_NONE,
   };
   EGLConfig config = nullptr;
@@ -51,15 +55,12 @@ void EglBackend::create_context() {
   }
   if (count == 0) {
     const char* apis = eglQueryString(dpy, EGL_CLIENT_APIS);
-    throw GlError(std::string("no EGL config for desktop OpenGL (client APIs: ") +
-                  (apis ? apis : "?") + ")");
+    throw GlError(std::string("no EGL config for desktop OpenGL (client APIs: ") + (apis ? apis : "?") + ")");
   }
 
   const EGLint context_attribs[] = {
-      EGL_CONTEXT_MAJOR_VERSION, 3,
-      EGL_CONTEXT_MINOR_VERSION, 3,
-      EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-      EGL_NONE,
+      EGL_CONTEXT_MAJOR_VERSION,           3,        EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE,
   };
   context_ = eglCreateContext(dpy, config, EGL_NO_CONTEXT, context_attribs);
   if (context_ == EGL_NO_CONTEXT) throw GlError(egl_failure("eglCreateContext(3.3 core)"));
@@ -85,9 +86,7 @@ void EglBackend::unbind() noexcept {
   eglMakeCurrent(display_.get(), EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
 }
 
-void* EglBackend::get_proc(const char* name) const {
-  return reinterpret_cast<void*>(eglGetProcAddress(name));
-}
+void* EglBackend::get_proc(const char* name) const { return reinterpret_cast<void*>(eglGetProcAddress(name)); }
 
 void EglBackend::release() noexcept {
   const EGLDisplay dpy = display_.get();

@@ -28,8 +28,7 @@ struct Device {
 
 std::vector<Device> enumerate_devices() {
   const char* ext = client_extensions();
-  if (!has_extension(ext, "EGL_EXT_device_enumeration") &&
-      !has_extension(ext, "EGL_EXT_device_base")) {
+  if (!has_extension(ext, "EGL_EXT_device_enumeration") && !has_extension(ext, "EGL_EXT_device_base")) {
     throw GlError("EGL_EXT_device_enumeration not supported");
   }
   if (!has_extension(ext, "EGL_EXT_platform_device")) {
@@ -52,8 +51,7 @@ std::vector<Device> enumerate_devices() {
   std::vector<Device> devices;
   for (std::size_t i = 0; i < handles.size(); ++i) {
     const char* dev_ext = query_string(handles[i], EGL_EXTENSIONS);
-    Device d{handles[i], has_extension(dev_ext, "EGL_MESA_device_software"),
-             "device " + std::to_string(i)};
+    Device d{handles[i], has_extension(dev_ext, "EGL_MESA_device_software"), "device " + std::to_string(i)};
     if (has_extension(dev_ext, "EGL_EXT_device_drm")) {
       if (const char* node = query_string(handles[i], EGL_DRM_DEVICE_FILE_EXT)) {
         d.name += " (" + std::string(node) + ")";
@@ -83,8 +81,7 @@ std::unique_ptr<Backend> create_egl_device_backend(bool allow_software) {
     if (d.software && !allow_software) ++skipped;
   }
   if (order.empty()) {
-    throw GlError("no non-software devices (" + std::to_string(skipped) +
-                  " software device(s) skipped)");
+    throw GlError("no non-software devices (" + std::to_string(skipped) + " software device(s) skipped)");
   }
 
   std::string failures;

@@ -19,8 +19,8 @@ void Framebuffer::attach_color(const Texture& texture, int index) {
   }
   const GlApi& gl = *api();
   bind();
-  gl.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(index),
-                            GL_TEXTURE_2D, texture.id(), 0);
+  gl.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(index), GL_TEXTURE_2D,
+                            texture.id(), 0);
   attached_mask_ |= 1u << index;
 
   // GL 3.3 calls a framebuffer incomplete when a draw buffer names an empty
@@ -29,8 +29,7 @@ void Framebuffer::attach_color(const Texture& texture, int index) {
   GLsizei count = 0;
   for (int i = 0; i < kMaxColorAttachments; ++i) {
     if ((attached_mask_ >> i) == 0) break;
-    buffers[count++] = (attached_mask_ & (1u << i)) ? GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i)
-                                                    : GL_NONE;
+    buffers[count++] = (attached_mask_ & (1u << i)) ? GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i) : GL_NONE;
   }
   gl.glDrawBuffers(count, buffers);
   // Likewise the read buffer must name an attachment: use the lowest one.

@@ -27,9 +27,7 @@ class OsMesaBackend final : public Backend {
   }
   ~OsMesaBackend() override { release(); }
 
-  void* get_proc(const char* name) const override {
-    return reinterpret_cast<void*>(get_proc_address_(name));
-  }
+  void* get_proc(const char* name) const override { return reinterpret_cast<void*>(get_proc_address_(name)); }
 
  protected:
   void bind() override {
@@ -70,13 +68,20 @@ class OsMesaBackend final : public Backend {
 
   void create_context() {
     const int attribs[] = {
-        OSMESA_FORMAT, OSMESA_RGBA,
-        OSMESA_DEPTH_BITS, 0,
-        OSMESA_STENCIL_BITS, 0,
-        OSMESA_ACCUM_BITS, 0,
-        OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-        OSMESA_CONTEXT_MAJOR_VERSION, 3,
-        OSMESA_CONTEXT_MINOR_VERSION, 3,
+        OSMESA_FORMAT,
+        OSMESA_RGBA,
+        OSMESA_DEPTH_BITS,
+        0,
+        OSMESA_STENCIL_BITS,
+        0,
+        OSMESA_ACCUM_BITS,
+        0,
+        OSMESA_PROFILE,
+        OSMESA_CORE_PROFILE,
+        OSMESA_CONTEXT_MAJOR_VERSION,
+        3,
+        OSMESA_CONTEXT_MINOR_VERSION,
+        3,
         0,
     };
     context_ = create_(attribs, nullptr);

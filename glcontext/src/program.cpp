@@ -10,10 +10,14 @@ namespace {
 
 std::string stage_name(GLenum stage) {
   switch (stage) {
-    case GL_VERTEX_SHADER: return "vertex";
-    case GL_FRAGMENT_SHADER: return "fragment";
-    case GL_GEOMETRY_SHADER: return "geometry";
-    default: return "stage " + std::to_string(stage);
+    case GL_VERTEX_SHADER:
+      return "vertex";
+    case GL_FRAGMENT_SHADER:
+      return "fragment";
+    case GL_GEOMETRY_SHADER:
+      return "geometry";
+    default:
+      return "stage " + std::to_string(stage);
   }
 }
 
@@ -39,8 +43,7 @@ std::string program_log(const GlApi& gl, GLuint program) {
 
 }  // namespace
 
-Shader Shader::compile(const GlApi& gl, GLenum stage, std::string_view source,
-                       std::string_view label) {
+Shader Shader::compile(const GlApi& gl, GLenum stage, std::string_view source, std::string_view label) {
   const GLuint id = gl.glCreateShader(stage);
   if (id == 0) {
     check(gl, "glCreateShader");
@@ -57,8 +60,8 @@ Shader Shader::compile(const GlApi& gl, GLenum stage, std::string_view source,
   GLint ok = GL_FALSE;
   gl.glGetShaderiv(id, GL_COMPILE_STATUS, &ok);
   if (ok != GL_TRUE) {
-    throw GlError("shader '" + std::string(label) + "' (" + stage_name(stage) +
-                  ") failed to compile:\n" + shader_log(gl, id));
+    throw GlError("shader '" + std::string(label) + "' (" + stage_name(stage) + ") failed to compile:\n" +
+                  shader_log(gl, id));
   }
   return shader;
 }
@@ -89,8 +92,8 @@ Program Program::link_stages(const GlApi& gl, std::initializer_list<const Shader
   return program;
 }
 
-Program Program::link(const GlApi& gl, std::string_view vertex_src,
-                      std::string_view fragment_src, std::string_view label) {
+Program Program::link(const GlApi& gl, std::string_view vertex_src, std::string_view fragment_src,
+                      std::string_view label) {
   const Shader vs = Shader::compile(gl, GL_VERTEX_SHADER, vertex_src, label);
   const Shader fs = Shader::compile(gl, GL_FRAGMENT_SHADER, fragment_src, label);
   return link_stages(gl, {&vs, &fs}, label, [](GLuint) {});

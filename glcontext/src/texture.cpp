@@ -3,8 +3,8 @@
 
 namespace glc {
 
-Texture Texture::create_2d(const GlApi& gl, int width, int height, GLenum internal_format,
-                           GLenum format, GLenum type, const void* data) {
+Texture Texture::create_2d(const GlApi& gl, int width, int height, GLenum internal_format, GLenum format, GLenum type,
+                           const void* data) {
   Texture tex = create(gl);
   gl.glBindTexture(GL_TEXTURE_2D, tex.id());
   // Exact texel values matter (wavelet coefficients, glyph masks): no
@@ -22,8 +22,7 @@ Texture Texture::create_2d(const GlApi& gl, int width, int height, GLenum intern
   GLint old_alignment = 4;
   gl.glGetIntegerv(GL_UNPACK_ALIGNMENT, &old_alignment);
   gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  gl.glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal_format), width, height, 0, format,
-                  type, data);
+  gl.glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal_format), width, height, 0, format, type, data);
   gl.glPixelStorei(GL_UNPACK_ALIGNMENT, old_alignment);
   check(gl, "Texture::create_2d (glTexImage2D)");
 

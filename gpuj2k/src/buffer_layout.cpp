@@ -18,10 +18,13 @@ std::size_t checked_product(std::size_t a, std::size_t b, const char* what) {
 
 std::size_t sample_bytes(SampleType type) {
   switch (type) {
-    case SampleType::UInt8: return 1;
+    case SampleType::UInt8:
+      return 1;
     case SampleType::UInt16:
-    case SampleType::Int16: return 2;
-    case SampleType::Int32: return 4;
+    case SampleType::Int16:
+      return 2;
+    case SampleType::Int32:
+      return 4;
   }
   throw Error("unknown sample type");
 }
@@ -40,8 +43,8 @@ BufferLayout check_buffer(const BufferGeometry& g, const char* what) {
   const std::size_t tight_row = checked_product(out.pixel_step, w, "a row's size");
   out.row_stride = g.row_stride == 0 ? tight_row : g.row_stride;
   if (out.row_stride < tight_row)
-    throw Error("row stride " + std::to_string(out.row_stride) + " is smaller than a row (" + std::to_string(tight_row) +
-                " bytes)");
+    throw Error("row stride " + std::to_string(out.row_stride) + " is smaller than a row (" +
+                std::to_string(tight_row) + " bytes)");
   const std::size_t plane_bytes = checked_product(out.row_stride, h - 1, "the image's size") + tight_row;
   if (planar) {
     out.component_step = g.plane_stride == 0 ? checked_product(out.row_stride, h, "a plane's size") : g.plane_stride;

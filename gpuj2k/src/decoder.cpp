@@ -99,20 +99,28 @@ DecodedImage to_public(codec::DecodedImage&& image) {
 // Whether every sample of a component fits the type, from its declared precision.
 bool fits(SampleType type, const codec::DecodedComponent& c) {
   switch (type) {
-    case SampleType::UInt8: return !c.is_signed && c.precision <= 8;
-    case SampleType::UInt16: return !c.is_signed && c.precision <= 16;
-    case SampleType::Int16: return c.is_signed ? c.precision <= 16 : c.precision <= 15;
-    case SampleType::Int32: return true;
+    case SampleType::UInt8:
+      return !c.is_signed && c.precision <= 8;
+    case SampleType::UInt16:
+      return !c.is_signed && c.precision <= 16;
+    case SampleType::Int16:
+      return c.is_signed ? c.precision <= 16 : c.precision <= 15;
+    case SampleType::Int32:
+      return true;
   }
   return false;
 }
 
 const char* type_name(SampleType type) {
   switch (type) {
-    case SampleType::UInt8: return "uint8";
-    case SampleType::UInt16: return "uint16";
-    case SampleType::Int16: return "int16";
-    case SampleType::Int32: return "int32";
+    case SampleType::UInt8:
+      return "uint8";
+    case SampleType::UInt16:
+      return "uint16";
+    case SampleType::Int16:
+      return "int16";
+    case SampleType::Int32:
+      return "int32";
   }
   return "?";
 }
@@ -128,15 +136,28 @@ void write_samples(const codec::DecodedImage& image, const OutputView& out, cons
     const codec::DecodedComponent& comp = image.components[c];
     for (int y = 0; y < comp.height; ++y) {
       std::uint8_t* row = base + c * layout.component_step + static_cast<std::size_t>(y) * layout.row_stride;
-      const std::int32_t* src = comp.samples.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(comp.width);
+      const std::int32_t* src =
+          comp.samples.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(comp.width);
       for (int x = 0; x < comp.width; ++x) {
         std::uint8_t* d = row + static_cast<std::size_t>(x) * layout.pixel_step;
         const std::int32_t v = src[x];
         switch (out.type) {
-          case SampleType::UInt8: *d = static_cast<std::uint8_t>(v); break;
-          case SampleType::UInt16: { const auto u = static_cast<std::uint16_t>(v); std::memcpy(d, &u, 2); break; }
-          case SampleType::Int16: { const auto i = static_cast<std::int16_t>(v); std::memcpy(d, &i, 2); break; }
-          case SampleType::Int32: std::memcpy(d, &v, 4); break;
+          case SampleType::UInt8:
+            *d = static_cast<std::uint8_t>(v);
+            break;
+          case SampleType::UInt16: {
+            const auto u = static_cast<std::uint16_t>(v);
+            std::memcpy(d, &u, 2);
+            break;
+          }
+          case SampleType::Int16: {
+            const auto i = static_cast<std::int16_t>(v);
+            std::memcpy(d, &i, 2);
+            break;
+          }
+          case SampleType::Int32:
+            std::memcpy(d, &v, 4);
+            break;
         }
       }
     }

@@ -70,15 +70,32 @@ codec::SourceImage to_source(const ImageView& v) {
         const std::uint8_t* s = row + x * layout.pixel_step;
         std::int64_t value = 0;
         switch (v.type) {
-          case SampleType::UInt8: value = *s; break;
-          case SampleType::UInt16: { std::uint16_t u; std::memcpy(&u, s, 2); value = u; break; }
-          case SampleType::Int16: { std::int16_t i; std::memcpy(&i, s, 2); value = i; break; }
-          case SampleType::Int32: { std::int32_t i; std::memcpy(&i, s, 4); value = i; break; }
+          case SampleType::UInt8:
+            value = *s;
+            break;
+          case SampleType::UInt16: {
+            std::uint16_t u;
+            std::memcpy(&u, s, 2);
+            value = u;
+            break;
+          }
+          case SampleType::Int16: {
+            std::int16_t i;
+            std::memcpy(&i, s, 2);
+            value = i;
+            break;
+          }
+          case SampleType::Int32: {
+            std::int32_t i;
+            std::memcpy(&i, s, 4);
+            value = i;
+            break;
+          }
         }
         if (value < lo || value > hi)
           throw Error("sample " + std::to_string(value) + " of component " + std::to_string(c) + " at (" +
-                      std::to_string(x) + ", " + std::to_string(y) + ") does not fit " + std::to_string(bits) + "-bit " +
-                      (is_signed ? "signed" : "unsigned") + " samples");
+                      std::to_string(x) + ", " + std::to_string(y) + ") does not fit " + std::to_string(bits) +
+                      "-bit " + (is_signed ? "signed" : "unsigned") + " samples");
         dst[x] = static_cast<std::int32_t>(value);
       }
     }
@@ -89,14 +106,15 @@ codec::SourceImage to_source(const ImageView& v) {
 
 void require_positive(const std::vector<double>& values, const char* what) {
   for (double v : values)
-    if (!(v > 0) || !std::isfinite(v)) throw Error(std::string(what) + " must be positive numbers, got " + std::to_string(v));
+    if (!(v > 0) || !std::isfinite(v))
+      throw Error(std::string(what) + " must be positive numbers, got " + std::to_string(v));
 }
 
 static_assert(static_cast<int>(Progression::LRCP) == static_cast<int>(codec::Progression::LRCP) &&
-              static_cast<int>(Progression::RLCP) == static_cast<int>(codec::Progression::RLCP) &&
-              static_cast<int>(Progression::RPCL) == static_cast<int>(codec::Progression::RPCL) &&
-              static_cast<int>(Progression::PCRL) == static_cast<int>(codec::Progression::PCRL) &&
-              static_cast<int>(Progression::CPRL) == static_cast<int>(codec::Progression::CPRL),
+                  static_cast<int>(Progression::RLCP) == static_cast<int>(codec::Progression::RLCP) &&
+                  static_cast<int>(Progression::RPCL) == static_cast<int>(codec::Progression::RPCL) &&
+                  static_cast<int>(Progression::PCRL) == static_cast<int>(codec::Progression::PCRL) &&
+                  static_cast<int>(Progression::CPRL) == static_cast<int>(codec::Progression::CPRL),
               "the public progression orders are the codec's");
 
 // The codec's parameters but the targets, which need the image; checked.
@@ -136,7 +154,9 @@ codec::EncodeParams base_params(const EncodeOptions& o) {
   p.engine = o.engine ? &o.engine->state().encode : nullptr;
   p.skip_passes = !o.code_every_pass;
   p.ht = o.ht;
-  p.dwt = o.dwt == DwtDevice::Cpu ? codec::DwtDevice::Cpu : o.dwt == DwtDevice::Gpu ? codec::DwtDevice::Gpu : codec::DwtDevice::Auto;
+  p.dwt = o.dwt == DwtDevice::Cpu   ? codec::DwtDevice::Cpu
+          : o.dwt == DwtDevice::Gpu ? codec::DwtDevice::Gpu
+                                    : codec::DwtDevice::Auto;
   if (o.progress) {
     auto callback = o.progress;
     p.progress = [callback](std::size_t done, std::size_t total) {
@@ -205,9 +225,12 @@ auto guarded(Work&& work) -> decltype(work()) {
 
 codec::FileFormat file_format(Format format) {
   switch (format) {
-    case Format::Jp2: return codec::FileFormat::Jp2;
-    case Format::Jph: return codec::FileFormat::Jph;
-    case Format::Codestream: break;
+    case Format::Jp2:
+      return codec::FileFormat::Jp2;
+    case Format::Jph:
+      return codec::FileFormat::Jph;
+    case Format::Codestream:
+      break;
   }
   return codec::FileFormat::Codestream;
 }
@@ -233,7 +256,8 @@ std::vector<std::uint8_t> encode(const ImageView& image, const EncodeOptions& op
   return guarded([&] { return encode_source(to_source(image), options, 0, report); });
 }
 
-std::vector<std::uint8_t> encode_file(const std::string& input_path, const EncodeOptions& options, EncodeReport* report) {
+std::vector<std::uint8_t> encode_file(const std::string& input_path, const EncodeOptions& options,
+                                      EncodeReport* report) {
   return guarded([&] {
     base_params(options);  // option errors should not wait for a large image to be read
     const auto start = Clock::now();

@@ -28,13 +28,24 @@ struct SampleKind {
 
 bool kind_of(OIIO::TypeDesc type, SampleKind& kind) {
   switch (type.basetype) {
-    case OIIO::TypeDesc::UINT8: kind = {OIIO::TypeDesc::UINT8, 8, false, false}; return true;
-    case OIIO::TypeDesc::INT8: kind = {OIIO::TypeDesc::INT8, 8, true, false}; return true;
-    case OIIO::TypeDesc::UINT16: kind = {OIIO::TypeDesc::UINT16, 16, false, false}; return true;
-    case OIIO::TypeDesc::INT16: kind = {OIIO::TypeDesc::INT16, 16, true, false}; return true;
+    case OIIO::TypeDesc::UINT8:
+      kind = {OIIO::TypeDesc::UINT8, 8, false, false};
+      return true;
+    case OIIO::TypeDesc::INT8:
+      kind = {OIIO::TypeDesc::INT8, 8, true, false};
+      return true;
+    case OIIO::TypeDesc::UINT16:
+      kind = {OIIO::TypeDesc::UINT16, 16, false, false};
+      return true;
+    case OIIO::TypeDesc::INT16:
+      kind = {OIIO::TypeDesc::INT16, 16, true, false};
+      return true;
     case OIIO::TypeDesc::HALF:
-    case OIIO::TypeDesc::FLOAT: kind = {OIIO::TypeDesc::FLOAT, 32, false, true}; return true;
-    default: return false;
+    case OIIO::TypeDesc::FLOAT:
+      kind = {OIIO::TypeDesc::FLOAT, 32, false, true};
+      return true;
+    default:
+      return false;
   }
 }
 
@@ -117,11 +128,20 @@ Image read_with_oiio(const std::string& path) {
   image.pixels.resize(samples);
 
   switch (kind.read_as.basetype) {
-    case OIIO::TypeDesc::UINT8: read_integers<std::uint8_t>(*in, path, kind.read_as, image); break;
-    case OIIO::TypeDesc::INT8: read_integers<std::int8_t>(*in, path, kind.read_as, image); break;
-    case OIIO::TypeDesc::UINT16: read_integers<std::uint16_t>(*in, path, kind.read_as, image); break;
-    case OIIO::TypeDesc::INT16: read_integers<std::int16_t>(*in, path, kind.read_as, image); break;
-    default: read_pixels(*in, path, image.channels, kind.read_as, image.pixels.data());
+    case OIIO::TypeDesc::UINT8:
+      read_integers<std::uint8_t>(*in, path, kind.read_as, image);
+      break;
+    case OIIO::TypeDesc::INT8:
+      read_integers<std::int8_t>(*in, path, kind.read_as, image);
+      break;
+    case OIIO::TypeDesc::UINT16:
+      read_integers<std::uint16_t>(*in, path, kind.read_as, image);
+      break;
+    case OIIO::TypeDesc::INT16:
+      read_integers<std::int16_t>(*in, path, kind.read_as, image);
+      break;
+    default:
+      read_pixels(*in, path, image.channels, kind.read_as, image.pixels.data());
   }
   if (!in->close()) {
     throw IoError(path, detail::oiio_message(in->geterror(), "cannot close image"));

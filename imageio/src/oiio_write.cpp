@@ -37,11 +37,20 @@ std::string describe(const Image& image) {
 void write_pixels(OIIO::ImageOutput& out, const std::string& path, const Image& image, OIIO::TypeDesc type) {
   bool ok = false;
   switch (type.basetype) {
-    case OIIO::TypeDesc::UINT8: ok = out.write_image(type, to_storage<std::uint8_t>(image).data()); break;
-    case OIIO::TypeDesc::INT8: ok = out.write_image(type, to_storage<std::int8_t>(image).data()); break;
-    case OIIO::TypeDesc::UINT16: ok = out.write_image(type, to_storage<std::uint16_t>(image).data()); break;
-    case OIIO::TypeDesc::INT16: ok = out.write_image(type, to_storage<std::int16_t>(image).data()); break;
-    default: ok = out.write_image(type, image.pixels.data());
+    case OIIO::TypeDesc::UINT8:
+      ok = out.write_image(type, to_storage<std::uint8_t>(image).data());
+      break;
+    case OIIO::TypeDesc::INT8:
+      ok = out.write_image(type, to_storage<std::int8_t>(image).data());
+      break;
+    case OIIO::TypeDesc::UINT16:
+      ok = out.write_image(type, to_storage<std::uint16_t>(image).data());
+      break;
+    case OIIO::TypeDesc::INT16:
+      ok = out.write_image(type, to_storage<std::int16_t>(image).data());
+      break;
+    default:
+      ok = out.write_image(type, image.pixels.data());
   }
   if (!ok) throw IoError(path, detail::oiio_message(out.geterror(), "cannot write pixel data"));
 }

@@ -274,8 +274,8 @@ template <class Sink>
 void read_plain(PnmReader& reader, const Format& format, int maxval, std::uint64_t samples, Sink& sink) {
   const auto channels = std::size_t(format.channels);
   for (std::size_t i = 0; i < samples; ++i) {
-    const unsigned value = format.bitmap ? unsigned(1 - reader.read_plain_bit(i, samples))
-                                         : reader.read_plain_sample(i, samples, maxval);
+    const unsigned value =
+        format.bitmap ? unsigned(1 - reader.read_plain_bit(i, samples)) : reader.read_plain_sample(i, samples, maxval);
     sink.put(i / channels, int(i % channels), value);
   }
 }
@@ -292,7 +292,8 @@ void read_raw_bitmap(const std::uint8_t* src, int width, int height, Sink& sink)
 // `kChecked`: whether a sample can exceed maxval at all (not when maxval is 255 or 65535), so that
 // the common files take a loop without the test.
 template <bool kWide, bool kChecked, int kChannels, class Sink>
-void read_raw_samples(PnmReader& reader, const std::uint8_t* src, int maxval, std::size_t pixels, int channels, Sink& sink) {
+void read_raw_samples(PnmReader& reader, const std::uint8_t* src, int maxval, std::size_t pixels, int channels,
+                      Sink& sink) {
   const int n = kChannels > 0 ? kChannels : channels;
   for (std::size_t p = 0; p < pixels; ++p)
     for (int c = 0; c < n; ++c) {
@@ -361,7 +362,8 @@ void parse_into(std::span<const std::uint8_t> bytes, const std::string& name_for
   check_available(reader, needed, available);
   // Anything after the raster is left alone: it may be the next image.
   if constexpr (requires { sink.take_raster(bytes.data(), 0, 0, 0, 0); })
-    if (!format.bitmap && sink.take_raster(bytes.data() + data_start, shape.width, shape.height, shape.channels, maxval))
+    if (!format.bitmap &&
+        sink.take_raster(bytes.data() + data_start, shape.width, shape.height, shape.channels, maxval))
       return;
   sink.allocate(shape.width, shape.height, shape.channels, shape.bits_per_sample, samples);
   if (format.bitmap) {

@@ -19,7 +19,8 @@ void check_frame_range(const Bvh& bvh, const std::filesystem::path& file, int fi
 }
 
 CliCharacter build_cli_character(const Skeleton& skeleton, unsigned threads) {
-  return build_cli_character(skeleton, threads, build_procedural_head(load_viseme_set(default_viseme_dir() / "visemes.tsv")));
+  return build_cli_character(skeleton, threads,
+                             build_procedural_head(load_viseme_set(default_viseme_dir() / "visemes.tsv")));
 }
 
 CliCharacter build_cli_character(const Skeleton& skeleton, unsigned threads, FaceModel face, float output_scale) {

@@ -38,14 +38,16 @@ void run_face(const FaceCommand& command, const WeightTrack& track, const FaceMo
   if (!binding.unmatched.empty()) {
     std::string names;
     for (const std::string& n : binding.unmatched) names += (names.empty() ? "" : ", ") + n;
-    std::fprintf(log, "face: no target for channel%s %s (ignored)\n", binding.unmatched.size() > 1 ? "s" : "", names.c_str());
+    std::fprintf(log, "face: no target for channel%s %s (ignored)\n", binding.unmatched.size() > 1 ? "s" : "",
+                 names.c_str());
   }
   const FaceStreams streams(face);
   std::vector<float> weights(binding.target_count);
   std::vector<glm::vec3> positions(face.vertex_count()), normals(face.vertex_count());
   for (std::size_t f = 0; f < track.frame_count(); ++f) {
     target_weights(binding, track.frame(f), weights);
-    const FaceDeformJob job{face.positions, face.normals, streams.positions, streams.normals, weights, positions, normals};
+    const FaceDeformJob job{face.positions, face.normals, streams.positions, streams.normals, weights,
+                            positions,      normals};
     deform_face_parallel(job, command.threads);
     const MeshView mesh{positions, normals, face.indices};
     const auto file = frame_file(command.out_dir, f, command.format);

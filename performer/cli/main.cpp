@@ -4,7 +4,8 @@
 //   performer visemes --lang yue --text "你好" -o weights.csv   lip-sync weights per frame (+ --wav)
 //   performer face --weights weights.csv -o frames/            the deformed head per frame
 //   performer pose --bvh walk.bvh --frames 0:99 [--text ... --lang ...] -o frames/   the whole performer
-//   performer render --bvh walk.bvh [--text ... --lang ...] [--effects env,hair,snow,toon] [--gltf avatar.glb] -o out.mp4
+//   performer render --bvh walk.bvh [--text ... --lang ...] [--effects env,hair,snow,toon] [--gltf avatar.glb] -o
+//   out.mp4
 //                                                              the rendered performer, as video with its speech
 //   performer avatar --bvh walk.bvh -o avatar.glb              the generated performer as a glTF avatar
 //
@@ -31,19 +32,21 @@
 
 namespace {
 
-
 // The lip-sync options `visemes` takes.
 void add_lip_sync_options(CLI::App* app, performer::cli::LipSyncSource& s) {
-  app->add_option("--text", s.text, "text for espeak-ng to speak (yue: hanzi; cmn-latn-pinyin: pinyin with tone digits; ja: kana)");
+  app->add_option("--text", s.text,
+                  "text for espeak-ng to speak (yue: hanzi; cmn-latn-pinyin: pinyin with tone digits; ja: kana)");
   app->add_option("--lang", s.language, "language of --text: yue, cmn-latn-pinyin, ja, en-us");
-  app->add_option("--keyframes", s.keyframes, "timing from a keyframe file instead: start duration symbol language per line");
+  app->add_option("--keyframes", s.keyframes,
+                  "timing from a keyframe file instead: start duration symbol language per line");
   app->add_option("--rhubarb", s.rhubarb, "timing from Rhubarb Lip Sync output instead (TSV or JSON)");
   app->add_option("--wav", s.wav, "with --text: write the speech as 16-bit mono WAV");
   app->add_option("--fps", s.fps, "frames per second of the weight track (default 30)");
   app->add_option("--expression", s.expression, "a constant expression: smile, worry, surprise, anger");
   app->add_option("--expression-weight", s.expression_weight, "its weight (default 0.5)");
   app->add_option("--expressions", s.expressions, "expression keyframes instead: time expression weight per line");
-  app->add_option("--curve", s.curve, "viseme weight curve: linear (figure 3.8, default) or exponential (equation 3.8)");
+  app->add_option("--curve", s.curve,
+                  "viseme weight curve: linear (figure 3.8, default) or exponential (equation 3.8)");
   app->add_flag("!--no-blink", s.blink, "no eye blinks");
   app->add_option("--seed", s.seed, "seed of the blink generator (default 1)");
 }
@@ -67,7 +70,8 @@ void parse_frame_range(const std::string& text, int& first, int& last) {
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "performer: a virtual performer (thesis chapter 3): lip sync from text, a deformation-vector face, motion capture\n\n"
+      "performer: a virtual performer (thesis chapter 3): lip sync from text, a deformation-vector face, motion "
+      "capture\n\n"
       "Examples:\n"
       "  performer info --bvh walk.bvh\n"
       "  performer visemes --lang yue --text \"你好\" --fps 30 -o weights.csv --wav hello.wav\n"
@@ -85,45 +89,55 @@ int main(int argc, char** argv) {
 
   performer::cli::LipSyncSource lip_sync;
   std::filesystem::path weights_out;
-  CLI::App* visemes = app.add_subcommand("visemes", "lip-sync blending weights per frame, as CSV or JSON (by -o's extension)");
+  CLI::App* visemes =
+      app.add_subcommand("visemes", "lip-sync blending weights per frame, as CSV or JSON (by -o's extension)");
   add_lip_sync_options(visemes, lip_sync);
   visemes->add_option("-o,--output", weights_out, "weights file: .csv or .json")->required();
 
   std::filesystem::path weights_in;
   performer::cli::FaceCommand face_command;
-  CLI::App* face = app.add_subcommand("face", "the deformed head for every frame of a weight track, as PLY or OBJ files");
+  CLI::App* face =
+      app.add_subcommand("face", "the deformed head for every frame of a weight track, as PLY or OBJ files");
   face->add_option("--weights", weights_in, "weight track CSV (performer visemes)")->required();
   face->add_option("-o,--output", face_command.out_dir, "folder for frame_00000.ply, ...")->required();
   face->add_option("--format", face_command.format, "ply (default) or obj");
-  face->add_option("--gltf", face_command.gltf, "a glTF 2.0 avatar whose morph targets have Oculus or ARKit names (default: the procedural head)");
+  face->add_option("--gltf", face_command.gltf,
+                   "a glTF 2.0 avatar whose morph targets have Oculus or ARKit names (default: the procedural head)");
   face->add_option("--threads", face_command.threads, "threads (default: all)");
 
   performer::cli::LipSyncSource pose_lip_sync;
   performer::cli::PoseCommand pose_command;
   std::string frame_range;
   std::filesystem::path pose_weights;
-  CLI::App* pose = app.add_subcommand("pose", "the whole performer (generated body, procedural head) per motion capture frame, "
-                                               "face driven by speech or a weight track (equation 3.20), as PLY or OBJ files");
+  CLI::App* pose = app.add_subcommand("pose",
+                                      "the whole performer (generated body, procedural head) per motion capture frame, "
+                                      "face driven by speech or a weight track (equation 3.20), as PLY or OBJ files");
   pose->add_option("--bvh", pose_command.bvh, "BVH motion capture file")->required();
   pose->add_option("--frames", frame_range, "first and last frame, A:B, from 0")->required();
-  pose->add_option("-o,--output", pose_command.out_dir, "folder for frame_NNNNN.ply (NNNNN: the BVH frame)")->required();
+  pose->add_option("-o,--output", pose_command.out_dir, "folder for frame_NNNNN.ply (NNNNN: the BVH frame)")
+      ->required();
   pose->add_option("--format", pose_command.format, "ply (default) or obj");
   pose->add_option("--threads", pose_command.threads, "threads (default: all)");
-  pose->add_option("--weights", pose_weights, "face weights from a CSV (performer visemes) instead of lip-sync options");
+  pose->add_option("--weights", pose_weights,
+                   "face weights from a CSV (performer visemes) instead of lip-sync options");
   add_lip_sync_options(pose, pose_lip_sync);
 
   performer::cli::LipSyncSource render_lip_sync;
   performer::cli::RenderCommand render_command;
   std::string render_frames, render_size;
   std::filesystem::path render_weights;
-  CLI::App* render = app.add_subcommand("render", "the performer rendered on the GPU (equation 3.20 in a vertex shader, section "
-                                                   "3.7's effects), as an MP4 with the speech or as PNG frames");
+  CLI::App* render = app.add_subcommand("render",
+                                        "the performer rendered on the GPU (equation 3.20 in a vertex shader, section "
+                                        "3.7's effects), as an MP4 with the speech or as PNG frames");
   render->add_option("--bvh", render_command.bvh, "BVH motion capture file")->required();
   render->add_option("--frames", render_frames, "first and last BVH frame, A:B, from 0 (default: the whole clip)");
-  render->add_option("-o,--output", render_command.out, "an .mp4 file, or a folder for frame_00000.png, ...")->required();
-  render->add_option("--effects", render_command.effects, "any of env, hair, snow, toon, comma-separated (default none)");
+  render->add_option("-o,--output", render_command.out, "an .mp4 file, or a folder for frame_00000.png, ...")
+      ->required();
+  render->add_option("--effects", render_command.effects,
+                     "any of env, hair, snow, toon, comma-separated (default none)");
   render->add_option("--size", render_size, "frame size WxH (default 640x480; even for MP4)");
-  render->add_option("--gl", render_command.gl_platform, "GL platform: auto, egl-device, egl-surfaceless, egl-default, osmesa");
+  render->add_option("--gl", render_command.gl_platform,
+                     "GL platform: auto, egl-device, egl-surfaceless, egl-default, osmesa");
   render->add_option("--cubemap", render_command.cubemap_dir,
                      "folder with posx/negx/posy/negy/posz/negz for env (default ../shared/assets/cubemap)");
   render->add_option("--threads", render_command.threads, "threads for building the character (default: all)");
@@ -131,13 +145,15 @@ int main(int argc, char** argv) {
                      "a glTF 2.0 avatar (.glb/.gltf) instead of the generated performer: a skinned mesh whose joints "
                      "follow the clip's by name and whose morph targets (Oculus or ARKit names) are the face, or a "
                      "face alone, put on the generated body");
-  render->add_option("--weights", render_weights, "face weights from a CSV (performer visemes) instead of lip-sync options");
+  render->add_option("--weights", render_weights,
+                     "face weights from a CSV (performer visemes) instead of lip-sync options");
   add_lip_sync_options(render, render_lip_sync);
 
   performer::cli::AvatarCommand avatar_command;
-  CLI::App* avatar = app.add_subcommand("avatar", "the generated performer (body grown around the BVH's skeleton, procedural "
-                                                   "head) as a glTF 2.0 avatar in metres: skinned, with the face's targets "
-                                                   "as morph targets");
+  CLI::App* avatar = app.add_subcommand("avatar",
+                                        "the generated performer (body grown around the BVH's skeleton, procedural "
+                                        "head) as a glTF 2.0 avatar in metres: skinned, with the face's targets "
+                                        "as morph targets");
   avatar->add_option("--bvh", avatar_command.bvh, "BVH motion capture file (its skeleton)")->required();
   avatar->add_option("-o,--output", avatar_command.out, "a .glb or .gltf file")->required();
   avatar->add_option("--threads", avatar_command.threads, "threads (default: all)");
@@ -159,19 +175,22 @@ int main(int argc, char** argv) {
       const auto library = performer::VisemeLibrary::load_default();
       const performer::WeightTrack track = performer::cli::lip_sync_track(lip_sync, library);
       performer::cli::write_track(track, weights_out);
-      std::fprintf(stderr, "visemes: %zu frames at %g fps, %zu channels written to %s\n", track.frame_count(), track.fps,
-                   track.channel_count(), weights_out.string().c_str());
+      std::fprintf(stderr, "visemes: %zu frames at %g fps, %zu channels written to %s\n", track.frame_count(),
+                   track.fps, track.channel_count(), weights_out.string().c_str());
     } else if (face->parsed()) {
       const auto library = performer::VisemeLibrary::load_default();
       if (weights_in.extension() == ".json")
-        throw std::invalid_argument(weights_in.string() + ": --weights reads the CSV that performer visemes writes (JSON is for other tools)");
+        throw std::invalid_argument(
+            weights_in.string() + ": --weights reads the CSV that performer visemes writes (JSON is for other tools)");
       const performer::WeightTrack track = performer::read_weights_csv(weights_in, library.visemes());
       const performer::FaceModel model = performer::cli::load_face(face_command.gltf, library.visemes(), stderr);
       performer::cli::run_face(face_command, track, model, stderr);
     } else if (pose->parsed()) {
       parse_frame_range(frame_range, pose_command.first_frame, pose_command.last_frame);
-      const bool lip_sync = !pose_lip_sync.text.empty() || !pose_lip_sync.keyframes.empty() || !pose_lip_sync.rhubarb.empty();
-      if (lip_sync && !pose_weights.empty()) throw std::invalid_argument("give --weights or lip-sync options, not both");
+      const bool lip_sync =
+          !pose_lip_sync.text.empty() || !pose_lip_sync.keyframes.empty() || !pose_lip_sync.rhubarb.empty();
+      if (lip_sync && !pose_weights.empty())
+        throw std::invalid_argument("give --weights or lip-sync options, not both");
       performer::WeightTrack track;
       if (lip_sync || !pose_weights.empty()) {
         const auto library = performer::VisemeLibrary::load_default();
@@ -181,7 +200,8 @@ int main(int argc, char** argv) {
       }
       performer::cli::run_pose(pose_command, stderr);
     } else if (render->parsed()) {
-      if (!render_frames.empty()) parse_frame_range(render_frames, render_command.first_frame, render_command.last_frame);
+      if (!render_frames.empty())
+        parse_frame_range(render_frames, render_command.first_frame, render_command.last_frame);
       if (!render_size.empty()) {
         const std::size_t x = render_size.find('x');
         try {
@@ -196,8 +216,10 @@ int main(int argc, char** argv) {
       }
       if (render_command.cubemap_dir.empty()) render_command.cubemap_dir = "../shared/assets/cubemap";
       render_command.fps = static_cast<int>(std::lround(render_lip_sync.fps));  // --fps: the video's and the track's
-      const bool lip_sync = !render_lip_sync.text.empty() || !render_lip_sync.keyframes.empty() || !render_lip_sync.rhubarb.empty();
-      if (lip_sync && !render_weights.empty()) throw std::invalid_argument("give --weights or lip-sync options, not both");
+      const bool lip_sync =
+          !render_lip_sync.text.empty() || !render_lip_sync.keyframes.empty() || !render_lip_sync.rhubarb.empty();
+      if (lip_sync && !render_weights.empty())
+        throw std::invalid_argument("give --weights or lip-sync options, not both");
       performer::WeightTrack track;
       performer::Speech speech;
       if (lip_sync || !render_weights.empty()) {

@@ -146,11 +146,12 @@ Figure avatar_figure(const std::filesystem::path& file, const Skeleton& skeleton
   for (const glm::mat4& m : r.rest_world) figure.rest_joints.emplace_back(m[3]);
   figure.root = r.root;
   const std::size_t joints = avatar.skin.joints.size();
-  std::fprintf(log, "render: avatar %s, mesh \"%s\", %zu face targets; %zu of %zu joints follow the clip by name, "
+  std::fprintf(log,
+               "render: avatar %s, mesh \"%s\", %zu face targets; %zu of %zu joints follow the clip by name, "
                "at %.4g avatar units per clip unit%s%s\n",
                file.string().c_str(), avatar.mesh.c_str(), figure.face.targets.size(), joints - r.unmatched.size(),
-               joints, r.scale, r.unmatched.empty() ? "" : "; in bind pose on their parents: ",
-               joined(r.unmatched, 12).c_str());
+               joints, r.scale,
+               r.unmatched.empty() ? "" : "; in bind pose on their parents: ", joined(r.unmatched, 12).c_str());
   if (figure.face.targets.empty())
     std::fprintf(log, "render: the avatar has none of the morph targets the performer needs; its face does not move\n");
   return figure;
@@ -195,15 +196,15 @@ void run_render(const RenderCommand& c, std::FILE* log) {
   const double duration = (last - c.first_frame) * bvh.motion.frame_time;
   const int out_frames = std::max(1, static_cast<int>(std::floor(duration * c.fps + 1e-9)) + 1);
 
-  const Figure figure = c.gltf.empty()
-                           ? generated_figure(skeleton, c.threads,
-                                              build_procedural_head(load_viseme_set(default_viseme_dir() / "visemes.tsv")))
-                           : avatar_figure(c.gltf, skeleton, c.threads, log);
+  const Figure figure =
+      c.gltf.empty() ? generated_figure(skeleton, c.threads,
+                                        build_procedural_head(load_viseme_set(default_viseme_dir() / "visemes.tsv")))
+                     : avatar_figure(c.gltf, skeleton, c.threads, log);
   const FaceModel& face = figure.face;
   const Character& character = figure.character;
 
-  const auto context = glc::Context::create(c.gl_platform.empty() ? glc::platform_from_env()
-                                                                    : glc::parse_platform(c.gl_platform));
+  const auto context =
+      glc::Context::create(c.gl_platform.empty() ? glc::platform_from_env() : glc::parse_platform(c.gl_platform));
   render::GpuDeformer deformer(*context, character);
   render::RenderSettings rs;
   rs.width = c.width;
@@ -212,7 +213,8 @@ void run_render(const RenderCommand& c, std::FILE* log) {
   rs.cubemap_dir = c.cubemap_dir;
   render::Renderer renderer(*context, character, rs);
   std::fprintf(log, "render: %zu vertices, %d frames at %d fps, %dx%d, effects %s, on %s\n", character.vertex_count(),
-               out_frames, c.fps, c.width, c.height, render::effects_name(effects).c_str(), context->description().c_str());
+               out_frames, c.fps, c.width, c.height, render::effects_name(effects).c_str(),
+               context->description().c_str());
 
   // The figure's height from the rest pose; the floor where the motion puts its lowest joint, less
   // what the skin reaches below the lowest joint at rest (the soles).
@@ -277,8 +279,8 @@ void run_render(const RenderCommand& c, std::FILE* log) {
   }
   sink.finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::fprintf(log, "render: %d frames written to %s in %.1f s (%.1f fps)\n", out_frames, c.out.string().c_str(), seconds,
-               out_frames / seconds);
+  std::fprintf(log, "render: %d frames written to %s in %.1f s (%.1f fps)\n", out_frames, c.out.string().c_str(),
+               seconds, out_frames / seconds);
 }
 
 }  // namespace performer::cli

@@ -36,9 +36,9 @@ struct RenderCommand {
 
 // Throws std::invalid_argument for bad options (frame range, size, effect, output kind) and for an
 // avatar none of whose joints is named like one of the clip's, BvhError for an unreadable file,
-// GltfError for an avatar that cannot be read or has neither a skin nor morph targets, glc::GlError when no GL context can be made,
-// std::runtime_error for output that cannot be written. Nothing is left at `out` on failure.
-// Progress (a bar on a terminal) and a summary go to `log`.
+// GltfError for an avatar that cannot be read or has neither a skin nor morph targets, glc::GlError when no GL context
+// can be made, std::runtime_error for output that cannot be written. Nothing is left at `out` on failure. Progress (a
+// bar on a terminal) and a summary go to `log`.
 void run_render(const RenderCommand& command, std::FILE* log);
 
 }  // namespace performer::cli

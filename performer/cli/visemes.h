@@ -24,7 +24,7 @@ struct LipSyncSource {
   std::filesystem::path expressions;  // or expression keyframes (weights_expression.h)
   std::string curve = "linear";       // linear (figure 3.8) or exponential (equation 3.8)
   bool blink = true;
-  unsigned seed = 1;                  // blink generator
+  unsigned seed = 1;  // blink generator
   double fps = 30.0;
 };
 

@@ -15,7 +15,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {
-    const performer::Bvh bvh = performer::parse_bvh(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz-input");
+    const performer::Bvh bvh =
+        performer::parse_bvh(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz-input");
     const auto& joints = bvh.skeleton.joints;
     int next_channel = 0;
     for (std::size_t i = 0; i < joints.size(); ++i) {
@@ -25,7 +26,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     if (next_channel != performer::channel_count(bvh.skeleton)) std::abort();
     if (bvh.motion.frames < 0) std::abort();
-    if (bvh.motion.values.size() != static_cast<std::size_t>(bvh.motion.frames) * static_cast<std::size_t>(next_channel))
+    if (bvh.motion.values.size() !=
+        static_cast<std::size_t>(bvh.motion.frames) * static_cast<std::size_t>(next_channel))
       std::abort();
     if (!(bvh.motion.frame_time > 0) || !std::isfinite(bvh.motion.frame_time)) std::abort();
     for (float v : bvh.motion.values)

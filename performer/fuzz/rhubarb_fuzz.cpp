@@ -19,8 +19,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size == 0) return 0;
   const std::string_view text(reinterpret_cast<const char*>(data) + 1, size - 1);
   try {
-    const std::vector<performer::MouthCue> cues =
-        (data[0] & 1) ? performer::parse_rhubarb_json(text, "fuzz-input") : performer::parse_rhubarb_tsv(text, "fuzz-input");
+    const std::vector<performer::MouthCue> cues = (data[0] & 1) ? performer::parse_rhubarb_json(text, "fuzz-input")
+                                                                : performer::parse_rhubarb_tsv(text, "fuzz-input");
     for (const performer::MouthCue& cue : cues) {
       if (!std::isfinite(cue.start) || !std::isfinite(cue.end) || cue.end < cue.start) std::abort();
       if (cue.shape.size() != 1 || !((cue.shape[0] >= 'A' && cue.shape[0] <= 'H') || cue.shape[0] == 'X')) std::abort();

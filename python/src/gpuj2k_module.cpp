@@ -40,13 +40,18 @@ gpuj2k::EncodeOptions make_options(bool lossless, const py::object& rate, const 
   o.psnr_db = numbers(psnr, "psnr");
   if (size) o.size_bytes = *size;
   o.levels = levels;
-  if (format == "jp2") o.format = gpuj2k::Format::Jp2;
-  else if (format != "j2k") throw gpuj2k::Error("format must be \"j2k\" or \"jp2\", got \"" + format + "\"");
+  if (format == "jp2")
+    o.format = gpuj2k::Format::Jp2;
+  else if (format != "j2k")
+    throw gpuj2k::Error("format must be \"j2k\" or \"jp2\", got \"" + format + "\"");
   o.threads = threads;
   o.engine = engine;
-  if (dwt == "cpu") o.dwt = gpuj2k::DwtDevice::Cpu;
-  else if (dwt == "gpu") o.dwt = gpuj2k::DwtDevice::Gpu;
-  else if (dwt != "auto") throw gpuj2k::Error("dwt must be \"auto\", \"cpu\" or \"gpu\", got \"" + dwt + "\"");
+  if (dwt == "cpu")
+    o.dwt = gpuj2k::DwtDevice::Cpu;
+  else if (dwt == "gpu")
+    o.dwt = gpuj2k::DwtDevice::Gpu;
+  else if (dwt != "auto")
+    throw gpuj2k::Error("dwt must be \"auto\", \"cpu\" or \"gpu\", got \"" + dwt + "\"");
   return o;
 }
 
@@ -55,19 +60,23 @@ py::bytes to_bytes(const std::vector<std::uint8_t>& data) {
 }
 
 py::bytes encode(const py::array& array, bool lossless, const py::object& rate, const py::object& psnr,
-                 std::optional<double> size, int levels, int bits,
-                 const std::string& format, int threads, const std::string& dwt,
-                 const std::shared_ptr<gpuj2k::Engine>& engine) {
+                 std::optional<double> size, int levels, int bits, const std::string& format, int threads,
+                 const std::string& dwt, const std::shared_ptr<gpuj2k::Engine>& engine) {
   const gpuj2k::EncodeOptions options = make_options(lossless, rate, psnr, size, levels, format, threads, dwt, engine);
   if (array.ndim() != 2 && array.ndim() != 3)
     throw gpuj2k::Error("the array must have shape (height, width) or (height, width, components), got " +
                         std::to_string(array.ndim()) + " dimensions");
   gpuj2k::ImageView v;
   const py::dtype dtype = array.dtype();
-  if (dtype.is(py::dtype::of<std::uint8_t>())) v.type = gpuj2k::SampleType::UInt8;
-  else if (dtype.is(py::dtype::of<std::uint16_t>())) v.type = gpuj2k::SampleType::UInt16;
-  else if (dtype.is(py::dtype::of<std::int16_t>())) v.type = gpuj2k::SampleType::Int16;
-  else throw gpuj2k::Error("the array's dtype must be uint8, uint16 or int16, got " + py::str(py::handle(dtype)).cast<std::string>());
+  if (dtype.is(py::dtype::of<std::uint8_t>()))
+    v.type = gpuj2k::SampleType::UInt8;
+  else if (dtype.is(py::dtype::of<std::uint16_t>()))
+    v.type = gpuj2k::SampleType::UInt16;
+  else if (dtype.is(py::dtype::of<std::int16_t>()))
+    v.type = gpuj2k::SampleType::Int16;
+  else
+    throw gpuj2k::Error("the array's dtype must be uint8, uint16 or int16, got " +
+                        py::str(py::handle(dtype)).cast<std::string>());
   const py::ssize_t item = array.itemsize();
   const py::ssize_t components = array.ndim() == 3 ? array.shape(2) : 1;
   // The API takes interleaved pixels in rows: components must be adjacent and pixels evenly spaced
@@ -82,9 +91,10 @@ py::bytes encode(const py::array& array, bool lossless, const py::object& rate, 
   v.components = static_cast<int>(components);
   v.bits = bits;
   v.row_stride = static_cast<std::size_t>(contiguous.strides(0));
-  v.size_bytes = v.height == 0 ? 0
-                               : static_cast<std::size_t>(contiguous.strides(0)) * static_cast<std::size_t>(v.height - 1) +
-                                     static_cast<std::size_t>(item * components * contiguous.shape(1));
+  v.size_bytes = v.height == 0
+                     ? 0
+                     : static_cast<std::size_t>(contiguous.strides(0)) * static_cast<std::size_t>(v.height - 1) +
+                           static_cast<std::size_t>(item * components * contiguous.shape(1));
   std::vector<std::uint8_t> out;
   {
     py::gil_scoped_release release;
@@ -94,9 +104,8 @@ py::bytes encode(const py::array& array, bool lossless, const py::object& rate, 
 }
 
 py::bytes encode_file(const std::string& path, bool lossless, const py::object& rate, const py::object& psnr,
-                      std::optional<double> size, int levels,
-                      const std::string& format, int threads, const std::string& dwt,
-                 const std::shared_ptr<gpuj2k::Engine>& engine) {
+                      std::optional<double> size, int levels, const std::string& format, int threads,
+                      const std::string& dwt, const std::shared_ptr<gpuj2k::Engine>& engine) {
   const gpuj2k::EncodeOptions options = make_options(lossless, rate, psnr, size, levels, format, threads, dwt, engine);
   std::vector<std::uint8_t> out;
   {
@@ -118,8 +127,10 @@ gpuj2k::DecodeOptions decode_options(int reduce, int layers, const std::optional
     o.region = gpuj2k::Region{(*region)[0], (*region)[1], (*region)[2], (*region)[3]};
   }
   o.threads = threads;
-  if (dwt == "gpu") o.dwt = gpuj2k::DwtDevice::Gpu;
-  else if (dwt != "cpu" && dwt != "auto") throw gpuj2k::Error("dwt must be \"auto\", \"cpu\" or \"gpu\", got \"" + dwt + "\"");
+  if (dwt == "gpu")
+    o.dwt = gpuj2k::DwtDevice::Gpu;
+  else if (dwt != "cpu" && dwt != "auto")
+    throw gpuj2k::Error("dwt must be \"auto\", \"cpu\" or \"gpu\", got \"" + dwt + "\"");
   return o;
 }
 
@@ -171,7 +182,8 @@ py::array decode(const py::bytes& data, int reduce, int layers, const std::optio
   return to_array(std::move(image));
 }
 
-py::array decode_file(const std::string& path, int reduce, int layers, const std::optional<std::vector<int>>& components,
+py::array decode_file(const std::string& path, int reduce, int layers,
+                      const std::optional<std::vector<int>>& components,
                       const std::optional<std::vector<std::int64_t>>& region, int threads, const std::string& dwt) {
   const gpuj2k::DecodeOptions options = decode_options(reduce, layers, components, region, threads, dwt);
   gpuj2k::DecodedImage image;

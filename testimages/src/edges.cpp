@@ -44,9 +44,14 @@ std::uint32_t edges_level(const Canvas& canvas, int x, int y, int c) {
   const int band_y = y - band_start(band, canvas.height);
   std::uint32_t level = 0;
   switch (band) {
-    case 0: level = stripes(canvas, x); break;
-    case 1: level = checkerboards(canvas, x, band_y); break;
-    default: level = diagonal(canvas, x, band_y, band_start(3, canvas.height) - band_start(2, canvas.height));
+    case 0:
+      level = stripes(canvas, x);
+      break;
+    case 1:
+      level = checkerboards(canvas, x, band_y);
+      break;
+    default:
+      level = diagonal(canvas, x, band_y, band_start(3, canvas.height) - band_start(2, canvas.height));
   }
   return channel_variant(level, canvas.max_level, c);
 }

@@ -35,10 +35,18 @@ std::int64_t fixed_cos(std::uint32_t phase) {
   const std::int64_t x = (within * kHalfPi) >> 30;  // angle within the quadrant
   std::int64_t value = 0;
   switch (quadrant) {
-    case 0: value = cos_q(x); break;
-    case 1: value = -sin_q(x); break;
-    case 2: value = -cos_q(x); break;
-    default: value = sin_q(x); break;
+    case 0:
+      value = cos_q(x);
+      break;
+    case 1:
+      value = -sin_q(x);
+      break;
+    case 2:
+      value = -cos_q(x);
+      break;
+    default:
+      value = sin_q(x);
+      break;
   }
   // Rounding can overshoot +-1 by an ulp; keep callers' ranges exact.
   if (value > kOne) return kOne;

@@ -31,13 +31,20 @@ void check_arguments(int width, int height, int channels, int bits) {
 
 detail::LevelFn level_function(Pattern pattern) {
   switch (pattern) {
-    case Pattern::ZonePlate: return &detail::zoneplate_level;
-    case Pattern::GradientH: return &detail::gradient_h_level;
-    case Pattern::GradientV: return &detail::gradient_v_level;
-    case Pattern::GradientDiag: return &detail::gradient_diag_level;
-    case Pattern::Edges: return &detail::edges_level;
-    case Pattern::Noise: return &detail::noise_level;
-    case Pattern::Mix: return &detail::mix_level;
+    case Pattern::ZonePlate:
+      return &detail::zoneplate_level;
+    case Pattern::GradientH:
+      return &detail::gradient_h_level;
+    case Pattern::GradientV:
+      return &detail::gradient_v_level;
+    case Pattern::GradientDiag:
+      return &detail::gradient_diag_level;
+    case Pattern::Edges:
+      return &detail::edges_level;
+    case Pattern::Noise:
+      return &detail::noise_level;
+    case Pattern::Mix:
+      return &detail::mix_level;
   }
   throw std::invalid_argument("invalid Pattern value " + std::to_string(int(pattern)));
 }

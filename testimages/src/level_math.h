@@ -18,8 +18,10 @@ constexpr std::uint32_t lerp_level(std::uint32_t from, std::uint32_t to, std::ui
 // (a quarter of the range cut from each end), then repeating.
 constexpr std::uint32_t channel_variant(std::uint32_t level, std::uint32_t max_level, int c) {
   switch (c % 3) {
-    case 0: return level;
-    case 1: return max_level - level;
+    case 0:
+      return level;
+    case 1:
+      return max_level - level;
     default: {
       const std::uint32_t margin = max_level / 4;
       return lerp_level(margin, max_level - margin, level, max_level);

@@ -50,7 +50,8 @@ inline std::size_t dress_as_foreign_rig(performer::SkinnedMesh& skin) {
   for (std::size_t j = 0; j < n; ++j) {
     performer::SkinJoint& joint = skin.joints[j];
     const glm::quat above = joint.parent < 0 ? glm::quat(1, 0, 0, 0) : turn[static_cast<std::size_t>(joint.parent)];
-    const glm::vec3 parent_at = joint.parent < 0 ? glm::vec3(0.0f) : glm::vec3(rest[static_cast<std::size_t>(joint.parent)][3]);
+    const glm::vec3 parent_at =
+        joint.parent < 0 ? glm::vec3(0.0f) : glm::vec3(rest[static_cast<std::size_t>(joint.parent)][3]);
     joint.rotation = glm::inverse(above) * turn[j];
     joint.translation = glm::inverse(above) * (glm::vec3(rest[j][3]) - parent_at);
     turned_rest[j] = glm::translate(glm::mat4(1.0f), glm::vec3(rest[j][3])) * glm::mat4_cast(turn[j]);
@@ -72,7 +73,8 @@ inline std::size_t dress_as_foreign_rig(performer::SkinnedMesh& skin) {
   prop.translation = glm::vec3(0.05f, 0.0f, 0.0f);
   prop.rotation = glm::angleAxis(1.0f, glm::vec3(0.0f, 1.0f, 0.0f));
   skin.joints.push_back(prop);
-  const glm::mat4 prop_rest = turned_rest[elbow] * glm::translate(glm::mat4(1.0f), prop.translation) * glm::mat4_cast(prop.rotation);
+  const glm::mat4 prop_rest =
+      turned_rest[elbow] * glm::translate(glm::mat4(1.0f), prop.translation) * glm::mat4_cast(prop.rotation);
   glm::mat4 prop_inverse;
   performer::inverse_transforms(std::span(&prop_rest, 1), std::span(&prop_inverse, 1));
   skin.inverse_bind.push_back(prop_inverse);

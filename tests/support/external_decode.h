@@ -16,8 +16,8 @@ namespace test_support {
 // Runs `tool -i FILE -o OUT EXTRA` and reads OUT (a PNG keeps 8/16 bits and alpha).
 inline imageio::Image decode_with(const std::string& tool, const std::filesystem::path& file,
                                   const std::filesystem::path& out, const std::string& extra = "") {
-  const std::string cmd = tool + " -i '" + file.string() + "' -o '" + out.string() + "' " + extra + " >'" +
-                          out.string() + ".log' 2>&1";
+  const std::string cmd =
+      tool + " -i '" + file.string() + "' -o '" + out.string() + "' " + extra + " >'" + out.string() + ".log' 2>&1";
   if (std::system(cmd.c_str()) != 0) {
     std::ifstream log(out.string() + ".log");
     std::stringstream ss;

@@ -38,8 +38,11 @@ struct Tiling {
     return s.str();
   }
 };
-inline constexpr Tiling kTilings[] = {{0, 0, 32, 32, 0, 0, 3}, {3, 1, 16, 16, 2, 0, 3}, {5, 7, 17, 9, 4, 6, 3},
-                                      {1, 1, 1, 64, 1, 0, 3},  {9, 2, 7, 5, 9, 1, 2}};
+inline constexpr Tiling kTilings[] = {{0, 0, 32, 32, 0, 0, 3},
+                                      {3, 1, 16, 16, 2, 0, 3},
+                                      {5, 7, 17, 9, 4, 6, 3},
+                                      {1, 1, 1, 64, 1, 0, 3},
+                                      {9, 2, 7, 5, 9, 1, 2}};
 
 // Progression order `order` (0..4) with an odd image origin, 8x8 code-blocks and, if asked,
 // precincts shrinking with resolution, on 4 levels (for a 70x53 image).

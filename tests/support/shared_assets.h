@@ -23,7 +23,7 @@ inline std::filesystem::path bvh_asset(const std::string& name) { return shared_
 
 }  // namespace test_support
 
-#define REQUIRE_SHARED_FILE(path)                                                                                  \
-  do {                                                                                                             \
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data " << (path) << " not found; skipping";        \
+#define REQUIRE_SHARED_FILE(path)                                                                           \
+  do {                                                                                                      \
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data " << (path) << " not found; skipping"; \
   } while (0)

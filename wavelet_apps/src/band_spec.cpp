@@ -135,12 +135,18 @@ RuleSpec parse_rule_spec(std::string_view text, std::span<const std::string> cha
   RuleSpec spec;
   spec.text = std::string(text);
   spec.where = parse_selector(text, lhs, channels, levels);
-  if (op == "max") spec.rule = dwt::BandRule::LargerMagnitude;
-  else if (op == "base") spec.rule = dwt::BandRule::First;
-  else if (op == "detail") spec.rule = dwt::BandRule::Second;
-  else if (op == "sum") spec.rule = dwt::BandRule::Sum;
-  else if (op == "zero") spec.first_factor = 0.0f;
-  else fail(text, "unknown rule '" + std::string(op) + "' (expected " + std::string(rule_names()) + ")");
+  if (op == "max")
+    spec.rule = dwt::BandRule::LargerMagnitude;
+  else if (op == "base")
+    spec.rule = dwt::BandRule::First;
+  else if (op == "detail")
+    spec.rule = dwt::BandRule::Second;
+  else if (op == "sum")
+    spec.rule = dwt::BandRule::Sum;
+  else if (op == "zero")
+    spec.first_factor = 0.0f;
+  else
+    fail(text, "unknown rule '" + std::string(op) + "' (expected " + std::string(rule_names()) + ")");
   return spec;
 }
 

@@ -47,16 +47,20 @@ void parse_grid_header(const std::filesystem::path& path, int line, const std::v
     int v = 0;
     const auto [end, ec] = std::from_chars(w[i].data(), w[i].data() + w[i].size(), v);
     if (ec != std::errc() || end != w[i].data() + w[i].size() || v < 1 || v > kMaxSide)
-      fail_at(path, line, std::string(what) + " '" + w[i] + "' is not a whole number in 1.." + std::to_string(kMaxSide));
+      fail_at(path, line,
+              std::string(what) + " '" + w[i] + "' is not a whole number in 1.." + std::to_string(kMaxSide));
     return v;
   };
   if (w.size() < first + 2) fail_at(path, line, "expected ROWS COLUMNS [wrap] [capped]");
   net.rows = side(first, "rows");
   net.columns = side(first + 1, "columns");
   for (std::size_t i = first + 2; i < w.size(); ++i) {
-    if (w[i] == "wrap") net.wrap = true;
-    else if (w[i] == "capped") net.capped = true;
-    else fail_at(path, line, "unknown grid flag '" + w[i] + "' (expected wrap or capped)");
+    if (w[i] == "wrap")
+      net.wrap = true;
+    else if (w[i] == "capped")
+      net.capped = true;
+    else
+      fail_at(path, line, "unknown grid flag '" + w[i] + "' (expected wrap or capped)");
   }
 }
 
@@ -152,10 +156,14 @@ std::vector<AxisSample> axis_samples(int n, bool wrap, int s) {
     AxisSample sample;
     for (int j = 0; j < 4; ++j) {
       const int i = cell - 1 + j;
-      if (wrap) sample.push_back({((i % n) + n) % n, b[j]});
-      else if (i < 0) sample.insert(sample.end(), {{0, 2 * b[j]}, {1, -b[j]}});
-      else if (i >= n) sample.insert(sample.end(), {{n - 1, 2 * b[j]}, {n - 2, -b[j]}});
-      else sample.push_back({i, b[j]});
+      if (wrap)
+        sample.push_back({((i % n) + n) % n, b[j]});
+      else if (i < 0)
+        sample.insert(sample.end(), {{0, 2 * b[j]}, {1, -b[j]}});
+      else if (i >= n)
+        sample.insert(sample.end(), {{n - 1, 2 * b[j]}, {n - 2, -b[j]}});
+      else
+        sample.push_back({i, b[j]});
     }
     out.push_back(std::move(sample));
   }
@@ -168,7 +176,8 @@ double signed_volume(const SurfaceMesh& m) {
     const Point3& a = m.positions[m.indices[t]];
     const Point3& b = m.positions[m.indices[t + 1]];
     const Point3& c = m.positions[m.indices[t + 2]];
-    v += double(a[0]) * (double(b[1]) * c[2] - double(b[2]) * c[1]) - double(a[1]) * (double(b[0]) * c[2] - double(b[2]) * c[0]) +
+    v += double(a[0]) * (double(b[1]) * c[2] - double(b[2]) * c[1]) -
+         double(a[1]) * (double(b[0]) * c[2] - double(b[2]) * c[0]) +
          double(a[2]) * (double(b[0]) * c[1] - double(b[1]) * c[0]);
   }
   return v / 6;
@@ -184,8 +193,9 @@ ControlNet read_control_net(const std::filesystem::path& path) {
   in.seekg(0);
   ControlNet net = first.rfind("ply", 0) == 0 ? read_ply_net(path, in) : read_text_net(path, in);
   if (net.points.size() != static_cast<std::size_t>(net.rows) * static_cast<std::size_t>(net.columns))
-    fail_at(path, 0, "has " + std::to_string(net.points.size()) + " points, ROWS * COLUMNS is " +
-                         std::to_string(static_cast<long long>(net.rows) * net.columns));
+    fail_at(path, 0,
+            "has " + std::to_string(net.points.size()) + " points, ROWS * COLUMNS is " +
+                std::to_string(static_cast<long long>(net.rows) * net.columns));
   return net;
 }
 
@@ -197,7 +207,8 @@ std::string grid_words(const ControlNet& net) {
 }
 
 void write_text_atomically(const std::filesystem::path& path, const std::string& text) {
-  imageio::write_bytes_atomically(path.string(), std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+  imageio::write_bytes_atomically(path.string(),
+                                  std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
 }
 
 void append_point(std::string& out, const Point3& p) {
@@ -286,8 +297,10 @@ SurfaceMesh tessellate(const ControlNet& net, int subdivisions) {
       const auto centre_index = static_cast<std::uint32_t>(mesh.positions.size());
       mesh.positions.push_back(centre);
       for (int c = 0; c < quad_columns; ++c) {
-        if (r == 0) mesh.indices.insert(mesh.indices.end(), {centre_index, vertex(r, c), vertex(r, c + 1)});
-        else mesh.indices.insert(mesh.indices.end(), {centre_index, vertex(r, c + 1), vertex(r, c)});
+        if (r == 0)
+          mesh.indices.insert(mesh.indices.end(), {centre_index, vertex(r, c), vertex(r, c + 1)});
+        else
+          mesh.indices.insert(mesh.indices.end(), {centre_index, vertex(r, c + 1), vertex(r, c)});
       }
     }
   }
@@ -318,9 +331,12 @@ void write_mesh(const std::filesystem::path& path, const SurfaceMesh& mesh) {
   for (const Point3& p : mesh.positions) positions.push_back(to_glm(p));
   const performer::MeshView view{positions, {}, mesh.indices};
   const std::string ext = path.extension().string();
-  if (ext == ".obj" || ext == ".OBJ") performer::write_obj(path, view);
-  else if (ext == ".ply" || ext == ".PLY") performer::write_ply(path, view);
-  else throw AppError(path.string() + ": a surface mesh is written as .obj or .ply");
+  if (ext == ".obj" || ext == ".OBJ")
+    performer::write_obj(path, view);
+  else if (ext == ".ply" || ext == ".PLY")
+    performer::write_ply(path, view);
+  else
+    throw AppError(path.string() + ": a surface mesh is written as .obj or .ply");
 }
 
 ControlNet head_control_net(int rings, int segments) {
@@ -348,7 +364,9 @@ ControlNet head_control_net(int rings, int segments) {
 }
 #else
 void write_mesh(const std::filesystem::path& path, const SurfaceMesh&) {
-  throw AppError(path.string() + ": writing surface meshes needs the performer's mesh writers (configure with GPUJ2K_BUILD_PERFORMER=ON)");
+  throw AppError(
+      path.string() +
+      ": writing surface meshes needs the performer's mesh writers (configure with GPUJ2K_BUILD_PERFORMER=ON)");
 }
 
 ControlNet head_control_net(int, int) {

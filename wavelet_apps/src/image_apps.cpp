@@ -50,7 +50,8 @@ imageio::Image with_channels(const imageio::Image& image, int channels, float op
 Planes edit_planes(const imageio::Image& image, const EditSettings& settings, WaveletEngine& engine) {
   Planes planes = to_planes(image, settings.space);
   for (std::size_t c = 0; c < planes.planes.size(); ++c) {
-    const auto ops = scale_operations(settings.bands, static_cast<int>(c), planes.width, planes.height, settings.params);
+    const auto ops =
+        scale_operations(settings.bands, static_cast<int>(c), planes.width, planes.height, settings.params);
     engine.process(planes.span(c), {}, settings.params, ops);
   }
   return planes;
@@ -88,8 +89,12 @@ imageio::Image fit_detail(const imageio::Image& detail, const imageio::Image& ba
           v = source.at(x % w, y % h, c);
         } else {
           // Pixel centres map onto pixel centres; edges are clamped.
-          const float sx = std::clamp((static_cast<float>(x) + 0.5f) * static_cast<float>(w) / static_cast<float>(W) - 0.5f, 0.0f, static_cast<float>(w - 1));
-          const float sy = std::clamp((static_cast<float>(y) + 0.5f) * static_cast<float>(h) / static_cast<float>(H) - 0.5f, 0.0f, static_cast<float>(h - 1));
+          const float sx =
+              std::clamp((static_cast<float>(x) + 0.5f) * static_cast<float>(w) / static_cast<float>(W) - 0.5f, 0.0f,
+                         static_cast<float>(w - 1));
+          const float sy =
+              std::clamp((static_cast<float>(y) + 0.5f) * static_cast<float>(h) / static_cast<float>(H) - 0.5f, 0.0f,
+                         static_cast<float>(h - 1));
           const int x0 = static_cast<int>(sx), y0 = static_cast<int>(sy);
           const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
           const float fx = sx - static_cast<float>(x0), fy = sy - static_cast<float>(y0);
@@ -110,15 +115,14 @@ Planes combine_planes(const imageio::Image& base, const imageio::Image& detail, 
   rules.insert(rules.end(), settings.bands.begin(), settings.bands.end());
   const RuleSpec take_base{};
   for (std::size_t c = 0; c < first.planes.size(); ++c) {
-    const auto ops =
-        rule_operations(rules, static_cast<int>(c), first.width, first.height, settings.params, take_base);
+    const auto ops = rule_operations(rules, static_cast<int>(c), first.width, first.height, settings.params, take_base);
     engine.process(first.span(c), second.span(c), settings.params, ops);
   }
   return first;
 }
 
-imageio::Image combine_images(const imageio::Image& base, const imageio::Image& detail,
-                              const CombineSettings& settings, WaveletEngine& engine) {
+imageio::Image combine_images(const imageio::Image& base, const imageio::Image& detail, const CombineSettings& settings,
+                              WaveletEngine& engine) {
   return to_format_of(from_planes(combine_planes(base, detail, settings, engine), settings.space), base);
 }
 
@@ -128,9 +132,8 @@ Decoupled decouple_planes(const imageio::Image& image, const DecoupleSettings& s
   Decoupled out;
   out.decal = to_planes(image, ColourSpace::Rgb);
   out.illuminance = out.decal;
-  const std::vector<ScaleSpec> only_lowest = {
-      parse_scale_spec("*=0", out.decal.names, settings.params.levels),
-      parse_scale_spec("LL=keep", out.decal.names, settings.params.levels)};
+  const std::vector<ScaleSpec> only_lowest = {parse_scale_spec("*=0", out.decal.names, settings.params.levels),
+                                              parse_scale_spec("LL=keep", out.decal.names, settings.params.levels)};
   const float range = sample_range(image);
   const float floor = settings.guard * range;
   for (std::size_t c = 0; c < out.decal.planes.size(); ++c) {

@@ -26,8 +26,10 @@ Matrix inverse_of(const Matrix& m) {
       // Cofactor of (c, r), transposed.
       const int r0 = (c + 1) % 3, r1 = (c + 2) % 3, c0 = (r + 1) % 3, c1 = (r + 2) % 3;
       inv[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)] =
-          (m[static_cast<std::size_t>(r0)][static_cast<std::size_t>(c0)] * m[static_cast<std::size_t>(r1)][static_cast<std::size_t>(c1)] -
-           m[static_cast<std::size_t>(r0)][static_cast<std::size_t>(c1)] * m[static_cast<std::size_t>(r1)][static_cast<std::size_t>(c0)]) /
+          (m[static_cast<std::size_t>(r0)][static_cast<std::size_t>(c0)] *
+               m[static_cast<std::size_t>(r1)][static_cast<std::size_t>(c1)] -
+           m[static_cast<std::size_t>(r0)][static_cast<std::size_t>(c1)] *
+               m[static_cast<std::size_t>(r1)][static_cast<std::size_t>(c0)]) /
           det;
     }
   return inv;
@@ -59,11 +61,16 @@ ColourSpace parse_colour_space(std::string_view name) {
 std::vector<std::string> channel_names(int channels, ColourSpace space) {
   const bool ycc = space == ColourSpace::YCbCr;
   switch (channels) {
-    case 1: return {"Y"};
-    case 2: return {"Y", "A"};
-    case 3: return ycc ? std::vector<std::string>{"Y", "Cb", "Cr"} : std::vector<std::string>{"R", "G", "B"};
-    case 4: return ycc ? std::vector<std::string>{"Y", "Cb", "Cr", "A"} : std::vector<std::string>{"R", "G", "B", "A"};
-    default: throw AppError("images of " + std::to_string(channels) + " channels are not supported (1 to 4)");
+    case 1:
+      return {"Y"};
+    case 2:
+      return {"Y", "A"};
+    case 3:
+      return ycc ? std::vector<std::string>{"Y", "Cb", "Cr"} : std::vector<std::string>{"R", "G", "B"};
+    case 4:
+      return ycc ? std::vector<std::string>{"Y", "Cb", "Cr", "A"} : std::vector<std::string>{"R", "G", "B", "A"};
+    default:
+      throw AppError("images of " + std::to_string(channels) + " channels are not supported (1 to 4)");
   }
 }
 
@@ -102,7 +109,8 @@ imageio::Image from_planes(const Planes& planes, ColourSpace space) {
 
 float sample_range(const imageio::Image& image) {
   if (image.is_float) return 1.0f;
-  return image.is_signed ? std::ldexp(1.0f, image.bits_per_sample - 1) - 1.0f : std::ldexp(1.0f, image.bits_per_sample) - 1.0f;
+  return image.is_signed ? std::ldexp(1.0f, image.bits_per_sample - 1) - 1.0f
+                         : std::ldexp(1.0f, image.bits_per_sample) - 1.0f;
 }
 
 imageio::Image to_format_of(const imageio::Image& values, const imageio::Image& like) {
@@ -111,7 +119,8 @@ imageio::Image to_format_of(const imageio::Image& values, const imageio::Image& 
   out.is_signed = like.is_signed;
   out.bits_per_sample = like.bits_per_sample;
   if (like.is_float) return out;
-  const float hi = like.is_signed ? std::ldexp(1.0f, like.bits_per_sample - 1) - 1.0f : std::ldexp(1.0f, like.bits_per_sample) - 1.0f;
+  const float hi = like.is_signed ? std::ldexp(1.0f, like.bits_per_sample - 1) - 1.0f
+                                  : std::ldexp(1.0f, like.bits_per_sample) - 1.0f;
   const float lo = like.is_signed ? -std::ldexp(1.0f, like.bits_per_sample - 1) : 0.0f;
   for (float& v : out.pixels) {
     const float r = std::isfinite(v) ? std::round(v) : 0.0f;

@@ -65,7 +65,8 @@ imageio::Image render_mesh(const SurfaceMesh& mesh, int width, int height, float
     const Vec& b = screen[mesh.indices[t + 1]];
     const Vec& c = screen[mesh.indices[t + 2]];
     // Shading from the view-space normal; both faces are lit, so open nets look right from behind.
-    Vec n = cross(sub(view[mesh.indices[t + 1]], view[mesh.indices[t]]), sub(view[mesh.indices[t + 2]], view[mesh.indices[t]]));
+    Vec n = cross(sub(view[mesh.indices[t + 1]], view[mesh.indices[t]]),
+                  sub(view[mesh.indices[t + 2]], view[mesh.indices[t]]));
     const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     if (len == 0) continue;
     const double lambert = std::abs(n[0] * light[0] + n[1] * light[1] + n[2] * light[2]) / len;

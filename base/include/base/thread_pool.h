@@ -31,7 +31,7 @@ class ThreadPool {
   void run_items();
 
   std::vector<std::thread> workers_;
-  std::mutex turn_;   // held by the parallel_for that owns the workers
+  std::mutex turn_;  // held by the parallel_for that owns the workers
   std::mutex mutex_;
   std::condition_variable wake_;
   std::condition_variable done_;

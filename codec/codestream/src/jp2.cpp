@@ -10,7 +10,8 @@ namespace {
 
 // Box types are four ASCII characters read as a big-endian u32 (T.800 I.4).
 constexpr std::uint32_t fourcc(const char (&s)[5]) {
-  return (std::uint32_t{static_cast<unsigned char>(s[0])} << 24) | (std::uint32_t{static_cast<unsigned char>(s[1])} << 16) |
+  return (std::uint32_t{static_cast<unsigned char>(s[0])} << 24) |
+         (std::uint32_t{static_cast<unsigned char>(s[1])} << 16) |
          (std::uint32_t{static_cast<unsigned char>(s[2])} << 8) | std::uint32_t{static_cast<unsigned char>(s[3])};
 }
 
@@ -91,8 +92,8 @@ void write_cdef(ByteWriter& out, const Jp2Header& h) {
   out.u16(n);
   for (std::uint16_t i = 0; i < n; ++i) {
     const bool opacity = i + 1 == n;
-    out.u16(i);                                          // Cn
-    out.u16(opacity ? 1 : 0);                            // Typ
+    out.u16(i);                                                // Cn
+    out.u16(opacity ? 1 : 0);                                  // Typ
     out.u16(static_cast<std::uint16_t>(opacity ? 0 : i + 1));  // Asoc
   }
   end_box(out, box);

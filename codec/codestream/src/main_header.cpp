@@ -29,16 +29,20 @@ void check_mct(const MainHeader& h) {
                           std::to_string(comps.size()));
   for (unsigned c = 1; c < 3; ++c) {
     if (comps[c].xrsiz != comps[0].xrsiz || comps[c].yrsiz != comps[0].yrsiz)
-      throw CodestreamError("COD: the multiple component transform needs components 0-2 equally subsampled; component " +
-                            std::to_string(c) + " differs");
+      throw CodestreamError(
+          "COD: the multiple component transform needs components 0-2 equally subsampled; component " +
+          std::to_string(c) + " differs");
     if (coding_style_for(h, c).transform != coding_style_for(h, 0).transform)
-      throw CodestreamError("COD: the multiple component transform needs one wavelet filter in components 0-2; component " +
-                            std::to_string(c) + " differs");
+      throw CodestreamError(
+          "COD: the multiple component transform needs one wavelet filter in components 0-2; component " +
+          std::to_string(c) + " differs");
     // Not a T.800 rule: OpenJPEG 2.5 refuses to decode (tile "dimension" mismatch before its
     // inverse MCT) when components 0-2 have different level counts, so we never write that.
     if (coding_style_for(h, c).levels != coding_style_for(h, 0).levels)
-      throw CodestreamError("COD: with the multiple component transform, components 0-2 must share one level count "
-                            "(OpenJPEG cannot decode otherwise); component " + std::to_string(c) + " differs");
+      throw CodestreamError(
+          "COD: with the multiple component transform, components 0-2 must share one level count "
+          "(OpenJPEG cannot decode otherwise); component " +
+          std::to_string(c) + " differs");
   }
 }
 

@@ -57,7 +57,8 @@ void validate_quantization(const Quantization& q, const char* who) {
   }
   for (std::size_t i = 0; i < n; ++i) {
     const StepSize& s = q.steps[i];
-    if (s.exponent > 31) fail(who, "subband " + std::to_string(i) + " exponent " + std::to_string(s.exponent) + " exceeds 31");
+    if (s.exponent > 31)
+      fail(who, "subband " + std::to_string(i) + " exponent " + std::to_string(s.exponent) + " exceeds 31");
     if (s.mantissa > 2047)
       fail(who, "subband " + std::to_string(i) + " mantissa " + std::to_string(s.mantissa) + " exceeds 2047");
     if (q.style == QuantizationStyle::None && s.mantissa != 0)

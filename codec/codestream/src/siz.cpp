@@ -25,7 +25,8 @@ void check_axis(char axis, std::uint64_t size, std::uint64_t origin, std::uint64
   const std::string a(1, axis);
   if (tile == 0) throw CodestreamError("SIZ: " + a + "Tsiz must be at least 1");
   if (!(origin < size))
-    throw CodestreamError("SIZ: " + a + "Osiz (" + num(origin) + ") must be less than " + a + "siz (" + num(size) + ")");
+    throw CodestreamError("SIZ: " + a + "Osiz (" + num(origin) + ") must be less than " + a + "siz (" + num(size) +
+                          ")");
   if (!(tile_origin <= origin))
     throw CodestreamError("SIZ: " + a + "TOsiz (" + num(tile_origin) + ") must not exceed " + a + "Osiz (" +
                           num(origin) + ")");

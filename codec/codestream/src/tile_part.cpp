@@ -14,10 +14,12 @@ constexpr std::size_t kPsotOffset = 6;  // SOT(2) Lsot(2) Isot(2), then Psot
 }  // namespace
 
 std::size_t write_sot(ByteWriter& out, const Sot& sot) {
-  const std::string who = "SOT (tile " + std::to_string(sot.tile_index) + ", part " + std::to_string(sot.part_index) + ")";
+  const std::string who =
+      "SOT (tile " + std::to_string(sot.tile_index) + ", part " + std::to_string(sot.part_index) + ")";
   if (sot.tile_index > 65534) throw CodestreamError(who + ": tile index exceeds 65534");
   if (sot.part_index > 254) throw CodestreamError(who + ": tile-part index exceeds 254");
-  if (sot.num_parts > 255) throw CodestreamError(who + ": " + std::to_string(sot.num_parts) + " tile-parts; at most 255");
+  if (sot.num_parts > 255)
+    throw CodestreamError(who + ": " + std::to_string(sot.num_parts) + " tile-parts; at most 255");
   if (sot.num_parts != 0 && sot.part_index >= sot.num_parts)
     throw CodestreamError(who + ": tile-part index must be less than the tile's " + std::to_string(sot.num_parts) +
                           " tile-parts");

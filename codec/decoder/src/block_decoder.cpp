@@ -46,15 +46,20 @@ int zero_context_hh(int h, int v, int d) {
 // Per-sample state flags.
 constexpr std::uint8_t kSignificant = 1;
 constexpr std::uint8_t kNegative = 2;
-constexpr std::uint8_t kVisited = 4;   // coded in this bit-plane's significance pass (D.3.1)
-constexpr std::uint8_t kRefined = 8;   // refined at least once (Table D.4)
+constexpr std::uint8_t kVisited = 4;  // coded in this bit-plane's significance pass (D.3.1)
+constexpr std::uint8_t kRefined = 8;  // refined at least once (Table D.4)
 
 enum class PassType { Significance, Refinement, Cleanup };
 
 class BlockDecoder {
  public:
   BlockDecoder(int w, int h, BandOrientation o, const t1::BlockStyle& style, std::span<std::int32_t> out)
-      : w_(w), h_(h), stride_(w + 2), orientation_(o), style_(style), out_(out),
+      : w_(w),
+        h_(h),
+        stride_(w + 2),
+        orientation_(o),
+        style_(style),
+        out_(out),
         flags_(static_cast<std::size_t>(w + 2) * static_cast<std::size_t>(h + 2), 0) {
     reset(cx_);
   }
@@ -77,13 +82,21 @@ class BlockDecoder {
         // D.6: with bypass, significance and refinement passes after the first four bit-planes
         // (pass index 10 on) are raw; the segmentation puts them in segments of their own.
         raw = style_.bypass && k >= 10 && type != PassType::Cleanup;
-        if (raw) raw_.start(bytes);
-        else mq_.start(bytes);
+        if (raw)
+          raw_.start(bytes);
+        else
+          mq_.start(bytes);
       }
       switch (type) {
-        case PassType::Significance: significance_pass(plane, raw); break;
-        case PassType::Refinement: refinement_pass(plane, raw); break;
-        case PassType::Cleanup: cleanup_pass(plane); break;
+        case PassType::Significance:
+          significance_pass(plane, raw);
+          break;
+        case PassType::Refinement:
+          refinement_pass(plane, raw);
+          break;
+        case PassType::Cleanup:
+          cleanup_pass(plane);
+          break;
       }
       --passes_left_in_segment;
       if (style_.reset) reset(cx_);  // D.4: contexts reset at the end of each pass
@@ -92,9 +105,12 @@ class BlockDecoder {
 
  private:
   std::uint8_t& flag(int x, int y) {
-    return flags_[static_cast<std::size_t>(y + 1) * static_cast<std::size_t>(stride_) + static_cast<std::size_t>(x + 1)];
+    return flags_[static_cast<std::size_t>(y + 1) * static_cast<std::size_t>(stride_) +
+                  static_cast<std::size_t>(x + 1)];
   }
-  std::int32_t& value(int x, int y) { return out_[static_cast<std::size_t>(y) * static_cast<std::size_t>(w_) + static_cast<std::size_t>(x)]; }
+  std::int32_t& value(int x, int y) {
+    return out_[static_cast<std::size_t>(y) * static_cast<std::size_t>(w_) + static_cast<std::size_t>(x)];
+  }
 
   // D.7: in vertically causal mode the last row of a stripe ignores the stripe below.
   bool below_hidden(int y) const { return style_.vertically_causal && (y & 3) == 3; }
@@ -115,9 +131,12 @@ class BlockDecoder {
   int zero_context(int x, int y) {
     const Neighbours n = count(x, y);
     switch (orientation_) {
-      case BandOrientation::HL: return zero_context_lh(n.v, n.h, n.d);
-      case BandOrientation::HH: return zero_context_hh(n.h, n.v, n.d);
-      default: return zero_context_lh(n.h, n.v, n.d);
+      case BandOrientation::HL:
+        return zero_context_lh(n.v, n.h, n.d);
+      case BandOrientation::HH:
+        return zero_context_hh(n.h, n.v, n.d);
+      default:
+        return zero_context_lh(n.h, n.v, n.d);
     }
   }
   // +1, -1 or 0 for a neighbour's contribution to the sign context (Table D.2).

@@ -17,10 +17,10 @@ struct Segment {
 
 // What tier-2 gathered for one code-block.
 struct BlockCodewords {
-  std::span<const std::uint8_t> data;     // the segments' bytes, back to back
+  std::span<const std::uint8_t> data;  // the segments' bytes, back to back
   std::span<const Segment> segments;
-  int passes = 0;                          // sum of the segments' passes
-  int top_plane = -1;                      // bit-plane of the first (cleanup) pass: Mb - P - 1 (+ ROI shift)
+  int passes = 0;      // sum of the segments' passes
+  int top_plane = -1;  // bit-plane of the first (cleanup) pass: Mb - P - 1 (+ ROI shift)
 };
 
 // The most significant bit-plane a block may start at: the decoder keeps each magnitude, with

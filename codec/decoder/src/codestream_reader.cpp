@@ -67,10 +67,13 @@ Siz read_siz(ByteReader body) {
     const int ssiz = body.u8("Ssiz");
     comp.is_signed = (ssiz & 0x80) != 0;
     comp.precision = (ssiz & 0x7F) + 1;
-    if (comp.precision > 38) fail_at(at, "SIZ component " + std::to_string(c) + " has " + std::to_string(comp.precision) + " bits (at most 38)");
+    if (comp.precision > 38)
+      fail_at(at,
+              "SIZ component " + std::to_string(c) + " has " + std::to_string(comp.precision) + " bits (at most 38)");
     comp.dx = body.u8("XRsiz");
     comp.dy = body.u8("YRsiz");
-    if (comp.dx < 1 || comp.dy < 1) fail_at(at + 1, "SIZ component " + std::to_string(c) + " has a sampling factor of 0");
+    if (comp.dx < 1 || comp.dy < 1)
+      fail_at(at + 1, "SIZ component " + std::to_string(c) + " has a sampling factor of 0");
     s.components.push_back(comp);
   }
   return s;
@@ -81,7 +84,8 @@ ComponentCoding read_component_coding(ByteReader& body, bool precincts_defined, 
   ComponentCoding c;
   std::size_t at = body.file_offset();
   c.levels = body.u8("number of decomposition levels");
-  if (c.levels > 32) fail_at(at, std::string(name) + ": " + std::to_string(c.levels) + " decomposition levels (at most 32)");
+  if (c.levels > 32)
+    fail_at(at, std::string(name) + ": " + std::to_string(c.levels) + " decomposition levels (at most 32)");
   at = body.file_offset();
   c.xcb = body.u8("code-block width") + 2;
   c.ycb = body.u8("code-block height") + 2;
@@ -93,11 +97,14 @@ ComponentCoding read_component_coding(ByteReader& body, bool precincts_defined, 
   // Bit 0x40: HT code-blocks (T.814 A.2, Table A.4); with 0x80 also set, the mixed mode where each
   // code-block may be either, which this decoder does not read.
   if (c.block_style & 0x80)
-    fail_at(at, std::string(name) + (c.block_style & 0x40 ? ": mixed HT / Part 1 code-blocks (T.814 style bits 0xC0) are not supported"
-                                                            : ": code-block style bit 7 is reserved"));
+    fail_at(at, std::string(name) + (c.block_style & 0x40
+                                         ? ": mixed HT / Part 1 code-blocks (T.814 style bits 0xC0) are not supported"
+                                         : ": code-block style bit 7 is reserved"));
   at = body.file_offset();
   const int transform = body.u8("wavelet transform");
-  if (transform > 1) fail_at(at, std::string(name) + ": wavelet transform " + std::to_string(transform) + " is not Part 1's 9/7 (0) or 5/3 (1)");
+  if (transform > 1)
+    fail_at(at, std::string(name) + ": wavelet transform " + std::to_string(transform) +
+                    " is not Part 1's 9/7 (0) or 5/3 (1)");
   c.reversible = transform == 1;
   if (precincts_defined) {
     for (int r = 0; r <= c.levels; ++r) {
@@ -170,9 +177,11 @@ void read_cap(ByteReader body) {
   const std::size_t at = body.file_offset();
   const std::uint32_t pcap = body.u32("Pcap");
   constexpr std::uint32_t kPart15 = std::uint32_t{1} << (32 - 15);
-  if (pcap & ~kPart15) fail_at(at, "CAP: capabilities of parts other than Part 15 (Pcap " + hex(pcap, 8) + ") are not supported");
+  if (pcap & ~kPart15)
+    fail_at(at, "CAP: capabilities of parts other than Part 15 (Pcap " + hex(pcap, 8) + ") are not supported");
   if (pcap & kPart15) body.u16("Ccap15");
-  if (!body.at_end()) body.fail("CAP: " + std::to_string(body.remaining()) + " byte(s) beyond the Ccap fields Pcap announces");
+  if (!body.at_end())
+    body.fail("CAP: " + std::to_string(body.remaining()) + " byte(s) beyond the Ccap fields Pcap announces");
 }
 
 // POC (A.6.6, Table A.32): RSpoc, CSpoc, LYEpoc, REpoc, CEpoc, Ppoc per progression, component
@@ -198,8 +207,9 @@ void read_poc(ByteReader body, const Siz& siz, HeaderMarkers& h) {
     if (order > 4) fail_at(at + entry - 1, "POC progression order " + std::to_string(order) + " is not one of 0..4");
     p.order = static_cast<t2::Order>(order);
     if (p.res_start >= p.res_end || p.res_end > 33 || p.comp_start >= p.comp_end || p.layer_end == 0)
-      fail_at(at, "POC progression with empty or reversed ranges (RS " + std::to_string(p.res_start) + ".." + std::to_string(p.res_end) +
-                      ", CS " + std::to_string(p.comp_start) + ".." + std::to_string(p.comp_end) + ", LYE " + std::to_string(p.layer_end) + ")");
+      fail_at(at, "POC progression with empty or reversed ranges (RS " + std::to_string(p.res_start) + ".." +
+                      std::to_string(p.res_end) + ", CS " + std::to_string(p.comp_start) + ".." +
+                      std::to_string(p.comp_end) + ", LYE " + std::to_string(p.layer_end) + ")");
     h.poc.push_back(p);
   }
 }
@@ -288,7 +298,8 @@ void read_tile_part(ByteReader& in, std::size_t base, Codestream& cs, std::size_
   const std::size_t isot_at = sot.file_offset();
   const int isot = sot.u16("Isot");
   if (isot >= cs.siz.grid.tile_count())
-    fail_at(isot_at, "SOT tile index " + std::to_string(isot) + " of a grid of " + std::to_string(cs.siz.grid.tile_count()) + " tiles");
+    fail_at(isot_at, "SOT tile index " + std::to_string(isot) + " of a grid of " +
+                         std::to_string(cs.siz.grid.tile_count()) + " tiles");
   const std::uint32_t psot = sot.u32("Psot");
   const int tpsot = sot.u8("TPsot");
   sot.u8("TNsot");
@@ -296,7 +307,9 @@ void read_tile_part(ByteReader& in, std::size_t base, Codestream& cs, std::size_
   auto it = std::find_if(cs.tiles.begin(), cs.tiles.end(), [&](const TileStream& t) { return t.index == isot; });
   const bool first = it == cs.tiles.end();
   if (first) {
-    if (tpsot != 0) cs.warnings.push_back("at byte " + std::to_string(sot_at) + ": tile " + std::to_string(isot) + " begins with tile-part " + std::to_string(tpsot));
+    if (tpsot != 0)
+      cs.warnings.push_back("at byte " + std::to_string(sot_at) + ": tile " + std::to_string(isot) +
+                            " begins with tile-part " + std::to_string(tpsot));
     cs.tiles.emplace_back();
     cs.tiles.back().index = isot;
     it = cs.tiles.end() - 1;
@@ -332,11 +345,13 @@ void read_tile_part(ByteReader& in, std::size_t base, Codestream& cs, std::size_
       if (probe.peek_u16() == mk::EOC) data_len -= 2;
     }
   } else {
-    if (psot < header_len) fail_at(sot_at + 6, "SOT Psot " + std::to_string(psot) + " is shorter than the tile-part header");
+    if (psot < header_len)
+      fail_at(sot_at + 6, "SOT Psot " + std::to_string(psot) + " is shorter than the tile-part header");
     data_len = psot - header_len;
     if (data_len > in.remaining()) {
-      cs.warnings.push_back("truncated: tile-part of tile " + std::to_string(isot) + " at byte " + std::to_string(sot_at) +
-                            " ends " + std::to_string(data_len - in.remaining()) + " byte(s) early");
+      cs.warnings.push_back("truncated: tile-part of tile " + std::to_string(isot) + " at byte " +
+                            std::to_string(sot_at) + " ends " + std::to_string(data_len - in.remaining()) +
+                            " byte(s) early");
       data_len = in.remaining();
     }
   }
@@ -350,7 +365,8 @@ void read_tile_part(ByteReader& in, std::size_t base, Codestream& cs, std::size_
 void distribute_ppm(Codestream& cs) {
   ByteReader in(cs.ppm);
   for (const int tile_index : cs.tile_part_tiles) {
-    auto it = std::find_if(cs.tiles.begin(), cs.tiles.end(), [&](const TileStream& t) { return t.index == tile_index; });
+    auto it =
+        std::find_if(cs.tiles.begin(), cs.tiles.end(), [&](const TileStream& t) { return t.index == tile_index; });
     it->packed_headers = true;
     if (in.remaining() < 4) {
       cs.warnings.push_back("PPM: the packed headers end before tile-part of tile " + std::to_string(tile_index));
@@ -358,7 +374,8 @@ void distribute_ppm(Codestream& cs) {
     }
     const std::uint32_t n = in.u32("Nppm");
     if (n > in.remaining()) {
-      cs.warnings.push_back("PPM: Nppm " + std::to_string(n) + " for tile " + std::to_string(tile_index) + " runs past the PPM data");
+      cs.warnings.push_back("PPM: Nppm " + std::to_string(n) + " for tile " + std::to_string(tile_index) +
+                            " runs past the PPM data");
       const auto rest = in.take(in.remaining(), "Ippm");
       it->headers.insert(it->headers.end(), rest.begin(), rest.end());
       continue;
@@ -455,27 +472,39 @@ TileParams resolve_tile_params(const Codestream& cs, const TileStream& tile) {
   p.poc.insert(p.poc.end(), th.poc.begin(), th.poc.end());
   for (int c = 0; c < static_cast<int>(cs.siz.components.size()); ++c) {
     TileComponentParams tc;
-    if (const auto* coc = find_in(th.coc, c)) tc.coding = *coc;
-    else if (th.cod) tc.coding = th.cod->component;
-    else if (const auto* mcoc = find_in(mh.coc, c)) tc.coding = *mcoc;
-    else tc.coding = mh.cod->component;
+    if (const auto* coc = find_in(th.coc, c))
+      tc.coding = *coc;
+    else if (th.cod)
+      tc.coding = th.cod->component;
+    else if (const auto* mcoc = find_in(mh.coc, c))
+      tc.coding = *mcoc;
+    else
+      tc.coding = mh.cod->component;
 
-    if (const auto* qcc = find_in(th.qcc, c)) tc.quantization = *qcc;
-    else if (th.qcd) tc.quantization = *th.qcd;
-    else if (const auto* mqcc = find_in(mh.qcc, c)) tc.quantization = *mqcc;
-    else tc.quantization = *mh.qcd;
+    if (const auto* qcc = find_in(th.qcc, c))
+      tc.quantization = *qcc;
+    else if (th.qcd)
+      tc.quantization = *th.qcd;
+    else if (const auto* mqcc = find_in(mh.qcc, c))
+      tc.quantization = *mqcc;
+    else
+      tc.quantization = *mh.qcd;
 
-    if (const auto* r = find_in(th.roi_shift, c)) tc.roi_shift = *r;
-    else if (const auto* mr = find_in(mh.roi_shift, c)) tc.roi_shift = *mr;
+    if (const auto* r = find_in(th.roi_shift, c))
+      tc.roi_shift = *r;
+    else if (const auto* mr = find_in(mh.roi_shift, c))
+      tc.roi_shift = *mr;
 
     const std::size_t bands = 3u * static_cast<std::size_t>(tc.coding.levels) + 1;
     if (tc.quantization.style != 1 && tc.quantization.steps.size() < bands)
-      throw DecodeError("tile " + std::to_string(tile.index) + " component " + std::to_string(c) + ": the quantisation marker gives " +
-                        std::to_string(tc.quantization.steps.size()) + " step sizes for " + std::to_string(bands) + " subbands");
+      throw DecodeError("tile " + std::to_string(tile.index) + " component " + std::to_string(c) +
+                        ": the quantisation marker gives " + std::to_string(tc.quantization.steps.size()) +
+                        " step sizes for " + std::to_string(bands) + " subbands");
     p.components.push_back(std::move(tc));
   }
   if (p.cod.mct == 1) {
-    if (cs.siz.components.size() < 3) throw DecodeError("COD asks for a component transform but the image has fewer than 3 components");
+    if (cs.siz.components.size() < 3)
+      throw DecodeError("COD asks for a component transform but the image has fewer than 3 components");
     const auto& c0 = cs.siz.components[0];
     for (int c = 1; c < 3; ++c) {
       const auto& ci = cs.siz.components[static_cast<std::size_t>(c)];

@@ -31,10 +31,10 @@ struct Siz {
 
 // SPcod / SPcoc: what COD and COC both say about a component (Table A.15).
 struct ComponentCoding {
-  int levels = 5;   // NL, 0..32
-  int xcb = 6, ycb = 6;  // code-block size exponents
-  std::uint8_t block_style = 0;  // Table A.19
-  bool reversible = false;       // 5/3 (Table A.20)
+  int levels = 5;                              // NL, 0..32
+  int xcb = 6, ycb = 6;                        // code-block size exponents
+  std::uint8_t block_style = 0;                // Table A.19
+  bool reversible = false;                     // 5/3 (Table A.20)
   std::vector<std::pair<int, int>> precincts;  // (PPx, PPy) per resolution, empty = 15,15
 };
 
@@ -72,15 +72,15 @@ struct HeaderMarkers {
   std::map<int, ComponentCoding> coc;
   std::optional<Quantization> qcd;
   std::map<int, Quantization> qcc;
-  std::map<int, int> roi_shift;  // RGN with maximum shift (Annex H), per component
+  std::map<int, int> roi_shift;        // RGN with maximum shift (Annex H), per component
   std::vector<ProgressionChange> poc;  // in the order the POC segments give them
 };
 
 struct TileStream {
   int index = 0;
-  HeaderMarkers header;                           // from the tile's first tile-part
+  HeaderMarkers header;                              // from the tile's first tile-part
   std::vector<std::span<const std::uint8_t>> parts;  // packet data of each tile-part, in order
-  std::size_t first_offset = 0;                    // file offset of the first part's data
+  std::size_t first_offset = 0;                      // file offset of the first part's data
   // Packed packet headers (PPM's share of this tile, or its PPT segments), tile-parts joined in
   // order; `packed_headers` false: the headers are in the packet data (B.9).
   bool packed_headers = false;
@@ -112,7 +112,7 @@ struct TileComponentParams {
   int roi_shift = 0;
 };
 struct TileParams {
-  Cod cod;  // SOP/EPH, order, layers, MCT from the governing COD
+  Cod cod;                             // SOP/EPH, order, layers, MCT from the governing COD
   std::vector<ProgressionChange> poc;  // main header's POC records, then the tile's; empty: cod.order
   std::vector<TileComponentParams> components;
 };

@@ -24,9 +24,10 @@ Rect decoded_area(const dec::Siz& siz, const DecodeOptions& options) {
   const DecodeRegion& r = *options.region;
   const Rect window = image.intersect(Rect{r.x0, r.y0, r.x1, r.y1});
   if (r.x0 >= r.x1 || r.y0 >= r.y1 || window.empty())
-    throw DecodeError("the region [" + std::to_string(r.x0) + "," + std::to_string(r.x1) + ") x [" + std::to_string(r.y0) + "," +
-                      std::to_string(r.y1) + ") is empty or outside the image [" + std::to_string(image.x0) + "," + std::to_string(image.x1) +
-                      ") x [" + std::to_string(image.y0) + "," + std::to_string(image.y1) + ")");
+    throw DecodeError("the region [" + std::to_string(r.x0) + "," + std::to_string(r.x1) + ") x [" +
+                      std::to_string(r.y0) + "," + std::to_string(r.y1) + ") is empty or outside the image [" +
+                      std::to_string(image.x0) + "," + std::to_string(image.x1) + ") x [" + std::to_string(image.y0) +
+                      "," + std::to_string(image.y1) + ")");
   return window;
 }
 
@@ -35,7 +36,8 @@ std::vector<bool> selected_components(const dec::Siz& siz, const DecodeOptions& 
   std::vector<bool> selected(siz.components.size(), options.components.empty());
   for (const int c : options.components) {
     if (c < 0 || c >= static_cast<int>(siz.components.size()))
-      throw DecodeError("component " + std::to_string(c) + " asked for, but the image has " + std::to_string(siz.components.size()));
+      throw DecodeError("component " + std::to_string(c) + " asked for, but the image has " +
+                        std::to_string(siz.components.size()));
     if (selected[static_cast<std::size_t>(c)]) throw DecodeError("component " + std::to_string(c) + " asked for twice");
     selected[static_cast<std::size_t>(c)] = true;
   }
@@ -46,8 +48,8 @@ std::vector<bool> selected_components(const dec::Siz& siz, const DecodeOptions& 
 // decoded window on its grid (B-12), reduced, sized before any tile is decoded, and refused if it
 // alone exceeds the memory limit; unselected components stay empty.
 // Without `with_samples` the components get their geometry only (read_header).
-DecodedImage allocate_image(const dec::Siz& siz, const Rect& window, const std::vector<bool>& selected, const DecodeOptions& options,
-                            bool with_samples = true) {
+DecodedImage allocate_image(const dec::Siz& siz, const Rect& window, const std::vector<bool>& selected,
+                            const DecodeOptions& options, bool with_samples = true) {
   DecodedImage img;
   const int r = options.reduce;
   img.x0 = reduced(window.x0, r);
@@ -79,7 +81,8 @@ DecodedImage allocate_image(const dec::Siz& siz, const Rect& window, const std::
     if (selected[c]) {
       out.width = static_cast<int>(reduced(area.x1, r) - out.x0);
       out.height = static_cast<int>(reduced(area.y1, r) - out.y0);
-      if (with_samples) out.samples.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height), 0);
+      if (with_samples)
+        out.samples.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height), 0);
     }
     img.components.push_back(std::move(out));
   }
@@ -123,7 +126,8 @@ void select_in_order(DecodedImage& image, const DecodeOptions& options) {
 DecodedImage read_header(std::span<const std::uint8_t> bytes, const DecodeOptions& options) {
   const OpenedStream opened = open_stream(bytes, options);
   const Rect window = decoded_area(opened.cs.siz, options);
-  DecodedImage image = allocate_image(opened.cs.siz, window, selected_components(opened.cs.siz, options), options, false);
+  DecodedImage image =
+      allocate_image(opened.cs.siz, window, selected_components(opened.cs.siz, options), options, false);
   if (!options.components.empty()) select_in_order(image, options);
   if (opened.jp2) image.jp2_colour_space = opened.jp2->colour_space;
   image.warnings = opened.cs.warnings;
@@ -167,7 +171,8 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
   if (!options.components.empty()) {
     select_in_order(image, options);
     if (jp2 && rewrites_channels(*jp2))
-      image.warnings.push_back("the JP2 palette, channel definitions and colour conversion are not applied to a component selection");
+      image.warnings.push_back(
+          "the JP2 palette, channel definitions and colour conversion are not applied to a component selection");
     if (jp2) image.jp2_colour_space = jp2->colour_space;
   } else if (jp2) {
     dec::apply_jp2_channels(*jp2, options.jp2_sycc_to_srgb, image);

@@ -62,7 +62,8 @@ Jp2Palette read_pclr(ByteReader in) {
     const int b = in.u8("pclr B");
     p.precision.push_back((b & 0x7F) + 1);
     p.is_signed.push_back((b & 0x80) != 0);
-    if (p.precision.back() > 38) fail_at(in.file_offset() - 1, "pclr column of " + std::to_string(p.precision.back()) + " bits");
+    if (p.precision.back() > 38)
+      fail_at(in.file_offset() - 1, "pclr column of " + std::to_string(p.precision.back()) + " bits");
   }
   p.values.reserve(static_cast<std::size_t>(p.entries) * static_cast<std::size_t>(columns));
   for (int e = 0; e < p.entries; ++e)
@@ -97,7 +98,8 @@ std::vector<Jp2ChannelSource> read_cmap(ByteReader in) {
 // cdef (I.5.3.6): N (2), then N of Cn, Typ, Asoc (2 bytes each).
 std::vector<Jp2ChannelDefinition> read_cdef(ByteReader in) {
   const int n = in.u16("cdef N");
-  if (in.remaining() != 6u * static_cast<std::size_t>(n)) in.fail("cdef length disagrees with its N " + std::to_string(n));
+  if (in.remaining() != 6u * static_cast<std::size_t>(n))
+    in.fail("cdef length disagrees with its N " + std::to_string(n));
   std::vector<Jp2ChannelDefinition> out;
   for (int i = 0; i < n; ++i) {
     Jp2ChannelDefinition d;
@@ -124,8 +126,10 @@ void read_jp2_header(ByteReader inner, Jp2File& f) {
       const int method = body.u8("METH");
       body.u8("PREC");
       body.u8("APPROX");
-      if (method == 1) f.colour_space = static_cast<int>(body.u32("EnumCS"));
-      else if (method == 2) f.icc_profile = true;
+      if (method == 1)
+        f.colour_space = static_cast<int>(body.u32("EnumCS"));
+      else if (method == 2)
+        f.icc_profile = true;
     } else if (sub.type == box_type("pclr")) {
       f.palette = read_pclr(body);
     } else if (sub.type == box_type("cmap")) {

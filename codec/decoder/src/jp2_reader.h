@@ -8,10 +8,10 @@ namespace codec::dec {
 
 // A palette (pclr, T.800 I.5.3.4): `entries` rows of one value per column.
 struct Jp2Palette {
-  int entries = 0;                        // NE, 1..1024
-  std::vector<int> precision;             // per column, 1..38 bits
-  std::vector<bool> is_signed;            // per column
-  std::vector<std::int64_t> values;       // entries x columns, row-major
+  int entries = 0;                   // NE, 1..1024
+  std::vector<int> precision;        // per column, 1..38 bits
+  std::vector<bool> is_signed;       // per column
+  std::vector<std::int64_t> values;  // entries x columns, row-major
   int columns() const { return static_cast<int>(precision.size()); }
 };
 
@@ -34,10 +34,10 @@ struct Jp2ChannelDefinition {
 struct Jp2File {
   std::span<const std::uint8_t> codestream;
   std::size_t codestream_offset = 0;
-  int colour_space = 0;  // colr method 1's EnumCS (16 sRGB, 17 greyscale, 18 sYCC), 0 if none
-  bool icc_profile = false;  // colr method 2 (restricted ICC): samples are passed on as they are
-  int ihdr_components = 0;   // ihdr NC
-  Jp2Palette palette;        // entries 0: no palette
+  int colour_space = 0;                           // colr method 1's EnumCS (16 sRGB, 17 greyscale, 18 sYCC), 0 if none
+  bool icc_profile = false;                       // colr method 2 (restricted ICC): samples are passed on as they are
+  int ihdr_components = 0;                        // ihdr NC
+  Jp2Palette palette;                             // entries 0: no palette
   std::vector<Jp2ChannelSource> channel_sources;  // from cmap; empty: component i is channel i
   std::vector<Jp2ChannelDefinition> channel_definitions;  // from cdef; empty: none
 };

@@ -59,11 +59,14 @@ int floor_log2(int n) { return std::bit_width(static_cast<unsigned>(n)) - 1; }
 
 t2::BlockCoder coder_of(const PacketContext& ctx) { return ctx.ht ? t2::BlockCoder::Ht : t2::BlockCoder::Ebcot; }
 
-bool segment_ends_after(const PacketContext& ctx, int pass) { return t2::segment_ends_after(ctx.style, pass, coder_of(ctx)); }
+bool segment_ends_after(const PacketContext& ctx, int pass) {
+  return t2::segment_ends_after(ctx.style, pass, coder_of(ctx));
+}
 
 // The pieces (one length field each) the passes first_pass .. first_pass + count - 1 form.
 std::vector<t2::SegmentPiece> split_passes(const PacketContext& ctx, int first_pass, int count) {
-  return t2::split_into_segments(ctx.style, first_pass, count, [](int) { return std::size_t{0}; }, coder_of(ctx));
+  return t2::split_into_segments(
+      ctx.style, first_pass, count, [](int) { return std::size_t{0}; }, coder_of(ctx));
 }
 
 constexpr std::uint16_t kSop = 0xFF91, kEph = 0xFF92;
@@ -97,14 +100,17 @@ bool TagTreeDecoder::walk(int x, int y, int threshold, BitSource& bits) {
   const int levels = static_cast<int>(level_width_.size());
   int inherited = 0;
   for (int l = levels - 1; l >= 0; --l) {
-    Node& n = nodes_[level_offset_[static_cast<std::size_t>(l)] +
-                     static_cast<std::size_t>(y >> l) * static_cast<std::size_t>(level_width_[static_cast<std::size_t>(l)]) +
-                     static_cast<std::size_t>(x >> l)];
+    Node& n =
+        nodes_[level_offset_[static_cast<std::size_t>(l)] +
+               static_cast<std::size_t>(y >> l) * static_cast<std::size_t>(level_width_[static_cast<std::size_t>(l)]) +
+               static_cast<std::size_t>(x >> l)];
     // A node is never below its parent (each parent is the minimum of its children).
     if (n.low < inherited) n.low = inherited;
     while (!n.known && n.low < threshold) {
-      if (bits.bit()) n.known = true;
-      else ++n.low;
+      if (bits.bit())
+        n.known = true;
+      else
+        ++n.low;
     }
     if (n.low >= threshold) return false;
     inherited = n.low;
@@ -120,7 +126,8 @@ bool TagTreeDecoder::below(int x, int y, int threshold, BitSource& bits) {
 template <class BitSource>
 int TagTreeDecoder::value(int x, int y, int limit, BitSource& bits) {
   if (!walk(x, y, limit + 1, bits)) throw DecodeError("a tag-tree value exceeds " + std::to_string(limit));
-  return nodes_[static_cast<std::size_t>(y) * static_cast<std::size_t>(level_width_[0]) + static_cast<std::size_t>(x)].low;
+  return nodes_[static_cast<std::size_t>(y) * static_cast<std::size_t>(level_width_[0]) + static_cast<std::size_t>(x)]
+      .low;
 }
 
 std::size_t read_packet(std::span<const std::uint8_t> data, std::size_t pos, std::size_t file_offset,
@@ -150,21 +157,23 @@ std::size_t read_packet(std::span<const std::uint8_t> data, std::size_t pos, std
         const PrecinctBand& pb = precinct.bands[b];
         for (int j = 0; j < pb.rows; ++j)
           for (int i = 0; i < pb.cols; ++i) {
-            const CodeBlock& cb = pb.blocks[static_cast<std::size_t>(j) * static_cast<std::size_t>(pb.cols) + static_cast<std::size_t>(i)];
+            const CodeBlock& cb = pb.blocks[static_cast<std::size_t>(j) * static_cast<std::size_t>(pb.cols) +
+                                            static_cast<std::size_t>(i)];
             BlockState& st = blocks[cb.index];
             // B.10.4: inclusion through the tag tree until first included, then one bit.
             const bool first_time = !st.included;
             const bool included = first_time ? trees[b].inclusion.below(i, j, layer + 1, in) : in.bit() != 0;
             if (!included) continue;
             if (first_time) st.missing_msbs = trees[b].zero_bitplanes.value(i, j, 300, in);  // B.10.5
-            const int added = read_pass_count(in);  // B.10.6
+            const int added = read_pass_count(in);                                           // B.10.6
             int increase = 0;  // B.10.7.1: Lblock grows by the number of 1 bits before a 0
             while (in.bit()) {
               if (++increase + st.lblock > 32) fail_at(file_offset + pos, "a code-block's Lblock exceeds 32");
             }
             st.lblock += increase;
             const int first_pass = st.included ? st.passes : 0;
-            if (first_pass + added > kMaxPasses) fail_at(file_offset + pos, "a code-block has more coding passes than bit-planes");
+            if (first_pass + added > kMaxPasses)
+              fail_at(file_offset + pos, "a code-block has more coding passes than bit-planes");
             // B.10.7.2: one length per codeword segment the new passes touch.
             auto pieces = split_passes(ctx, first_pass, added);
             for (t2::SegmentPiece& p : pieces) p.bytes = in.bits(st.lblock + floor_log2(p.passes));
@@ -178,8 +187,10 @@ std::size_t read_packet(std::span<const std::uint8_t> data, std::size_t pos, std
   std::size_t header_end = in.end_position();
   // A.8.2: EPH follows the header when COD asks for it (in the packed headers when they are).
   if (ctx.eph && u16_at(header_bytes, header_end) == kEph) header_end += 2;
-  if (ctx.packed) ctx.packed->pos = header_end;
-  else pos = header_end;
+  if (ctx.packed)
+    ctx.packed->pos = header_end;
+  else
+    pos = header_end;
   // The body: each contribution's bytes in header order.
   for (const Contribution& c : contributions) {
     BlockState& st = blocks[c.block];

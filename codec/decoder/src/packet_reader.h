@@ -46,10 +46,10 @@ class TagTreeDecoder {
 // Everything tier-2 learns about one code-block over the packets of its precinct.
 struct BlockState {
   bool included = false;
-  int lblock = 3;           // B.10.7.1
-  int missing_msbs = 0;     // P, from the zero bit-plane tag tree
-  int passes = 0;           // passes the headers announced (the segmentation counts them all)
-  int kept_passes = 0;      // passes whose bytes arrived and are wanted: what tier-1 decodes
+  int lblock = 3;             // B.10.7.1
+  int missing_msbs = 0;       // P, from the zero bit-plane tag tree
+  int passes = 0;             // passes the headers announced (the segmentation counts them all)
+  int kept_passes = 0;        // passes whose bytes arrived and are wanted: what tier-1 decodes
   bool segment_open = false;  // the last segment continues in a later packet
   std::vector<std::uint8_t> data;
   std::vector<Segment> segments;

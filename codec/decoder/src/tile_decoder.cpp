@@ -36,9 +36,12 @@ std::vector<CodingStyle> styles_of(const TileParams& p) {
 // E.1.1.1: the band's nominal dynamic range gain, log2 of 1, 2, 2, 4 for LL, HL, LH, HH.
 int band_gain(BandOrientation o) {
   switch (o) {
-    case BandOrientation::LL: return 0;
-    case BandOrientation::HH: return 2;
-    default: return 1;
+    case BandOrientation::LL:
+      return 0;
+    case BandOrientation::HH:
+      return 2;
+    default:
+      return 1;
   }
 }
 
@@ -106,8 +109,8 @@ bool last_ht_set(const BlockState& st, int mb, codec::ht::HtCodewords& set) {
 
 // Tier-1 (EBCOT or HT) of one code-block into `block` (w*h), in the representation of
 // decode_code_block.
-void decode_block(const BlockState& st, int mb, int w, int h, BandOrientation orientation, const ComponentCoding& coding,
-                  std::vector<std::int32_t>& block) {
+void decode_block(const BlockState& st, int mb, int w, int h, BandOrientation orientation,
+                  const ComponentCoding& coding, std::vector<std::int32_t>& block) {
   if (!is_ht(coding)) {
     BlockCodewords cw{st.data, st.segments, st.kept_passes, mb - 1 - st.missing_msbs};
     decode_code_block(cw, w, h, orientation, t1::BlockStyle::from_spcod(coding.block_style), block);
@@ -116,8 +119,8 @@ void decode_block(const BlockState& st, int mb, int w, int h, BandOrientation or
   codec::ht::HtCodewords set;
   if (!last_ht_set(st, mb, set)) return;
   if (set.cleanup_plane < 0 || set.cleanup_plane > kMaxTopPlane)
-    throw DecodeError("an HT code-block's cleanup pass is on bit-plane " + std::to_string(set.cleanup_plane) +
-                      " (Mb " + std::to_string(mb) + ", " + std::to_string(st.missing_msbs) + " missing MSBs)");
+    throw DecodeError("an HT code-block's cleanup pass is on bit-plane " + std::to_string(set.cleanup_plane) + " (Mb " +
+                      std::to_string(mb) + ", " + std::to_string(st.missing_msbs) + " missing MSBs)");
   set.vertically_causal = t1::BlockStyle::from_spcod(coding.block_style).vertically_causal;
   try {
     codec::ht::decode_ht_block(set, w, h, block);
@@ -143,7 +146,8 @@ bool reaches(const Rect& block, int level, const Rect& window) {
 void decode_blocks(const TileComponent& tc, const TileComponentParams& params, const ComponentSize& size, int reduce,
                    const Rect& window, const std::vector<BlockState>& states, Plane& plane) {
   const int kept_levels = tc.levels - reduce;
-  const auto geometry = dwt::decomposition(plane.width(), plane.height(), dwt::Origin{plane.rect.x0, plane.rect.y0}, kept_levels);
+  const auto geometry =
+      dwt::decomposition(plane.width(), plane.height(), dwt::Origin{plane.rect.x0, plane.rect.y0}, kept_levels);
   std::vector<std::int32_t> block;
   for (int r = 0; r <= kept_levels; ++r) {
     const Resolution& res = tc.resolutions[static_cast<std::size_t>(r)];
@@ -156,9 +160,11 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
       const StepSize step = step_of(params.quantization, tc.levels, band);
       // E-2: Mb = G + epsilon_b - 1 magnitude bit-planes, plus the ROI shift (H.1).
       const int mb = params.quantization.guard_bits + step.exponent - 1 + params.roi_shift;
-      const double delta = std::ldexp(1.0 + step.mantissa / 2048.0, size.precision + band_gain(band.orientation) - step.exponent);
+      const double delta =
+          std::ldexp(1.0 + step.mantissa / 2048.0, size.precision + band_gain(band.orientation) - step.exponent);
       const float half_delta = static_cast<float>(delta / 2);
-      const std::int32_t roi_threshold = params.roi_shift > 0 && params.roi_shift < 30 ? (std::int32_t{2} << params.roi_shift) : 0;
+      const std::int32_t roi_threshold =
+          params.roi_shift > 0 && params.roi_shift < 30 ? (std::int32_t{2} << params.roi_shift) : 0;
       for (const Precinct& p : res.precincts)
         for (const PrecinctBand& pb : p.bands) {
           if (pb.band != static_cast<int>(bi)) continue;
@@ -172,7 +178,8 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
             const int oy = layout.y + static_cast<int>(cb.rect.y0 - band.rect.y0);
             for (int y = 0; y < h; ++y)
               for (int x = 0; x < w; ++x) {
-                std::int32_t v = block[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)];
+                std::int32_t v =
+                    block[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)];
                 if (roi_threshold) {
                   // H.2: coefficients at or above 2^s belong to the region and were scaled up by s.
                   const std::int32_t m = v < 0 ? -v : v;
@@ -180,8 +187,10 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
                 }
                 const std::size_t at = static_cast<std::size_t>(oy + y) * static_cast<std::size_t>(plane.width()) +
                                        static_cast<std::size_t>(ox + x);
-                if (plane.reversible) plane.ints[at] = v / 2;  // the half-step dropped: the exact integer
-                else plane.floats[at] = static_cast<float>(v) * half_delta;
+                if (plane.reversible)
+                  plane.ints[at] = v / 2;  // the half-step dropped: the exact integer
+                else
+                  plane.floats[at] = static_cast<float>(v) * half_delta;
               }
           }
         }
@@ -205,7 +214,8 @@ void inverse_dwt(Plane& plane, int levels, const TileDecodeSetup& setup) {
 // G.2: inverse RCT (reversible) or ICT (irreversible) on components 0..2.
 void inverse_component_transform(std::vector<Plane>& planes) {
   Plane &p0 = planes[0], &p1 = planes[1], &p2 = planes[2];
-  if (p0.rect != p1.rect || p0.rect != p2.rect) throw DecodeError("the component transform needs equal tile-components");
+  if (p0.rect != p1.rect || p0.rect != p2.rect)
+    throw DecodeError("the component transform needs equal tile-components");
   if (p0.reversible) {
     for (std::size_t i = 0; i < p0.ints.size(); ++i) {
       const std::int32_t y = p0.ints[i], cb = p1.ints[i], cr = p2.ints[i];
@@ -231,8 +241,10 @@ void inverse_component_transform(std::vector<Plane>& planes) {
 void store(const Plane& plane, const ComponentSize& size, DecodedComponent& out) {
   const std::int64_t shift = size.is_signed ? 0 : (std::int64_t{1} << (size.precision - 1));
   const std::int64_t lo = size.is_signed ? -(std::int64_t{1} << (size.precision - 1)) : 0;
-  const std::int64_t hi = size.is_signed ? (std::int64_t{1} << (size.precision - 1)) - 1 : (std::int64_t{1} << size.precision) - 1;
-  const Rect area = plane.rect.intersect(Rect{out.x0, out.y0, std::int64_t{out.x0} + out.width, std::int64_t{out.y0} + out.height});
+  const std::int64_t hi =
+      size.is_signed ? (std::int64_t{1} << (size.precision - 1)) - 1 : (std::int64_t{1} << size.precision) - 1;
+  const Rect area =
+      plane.rect.intersect(Rect{out.x0, out.y0, std::int64_t{out.x0} + out.width, std::int64_t{out.y0} + out.height});
   for (std::int64_t y = area.y0; y < area.y1; ++y)
     for (std::int64_t x = area.x0; x < area.x1; ++x) {
       const std::size_t from = static_cast<std::size_t>(y - plane.rect.y0) * static_cast<std::size_t>(plane.width()) +
@@ -245,15 +257,16 @@ void store(const Plane& plane, const ComponentSize& size, DecodedComponent& out)
         v = std::isfinite(f) ? static_cast<std::int64_t>(std::lrint(std::clamp(f, -1e12f, 1e12f))) : 0;
       }
       v = std::clamp(v + shift, lo, hi);
-      out.samples[static_cast<std::size_t>(y - out.y0) * static_cast<std::size_t>(out.width) + static_cast<std::size_t>(x - out.x0)] =
-          static_cast<std::int32_t>(v);
+      out.samples[static_cast<std::size_t>(y - out.y0) * static_cast<std::size_t>(out.width) +
+                  static_cast<std::size_t>(x - out.x0)] = static_cast<std::int32_t>(v);
     }
 }
 
 // The tile's packets in the order they were sent: COD's progression, or with POC (A.6.6, B.12.2)
 // each progression in turn over its layer, resolution and component ranges, skipping packets an
 // earlier progression already sent. A packet no progression reaches is not in the stream.
-std::vector<t2::PacketId> packet_order(const TileParams& params, const Tile& tile, const std::vector<t2::ComponentGeometry>& geometry) {
+std::vector<t2::PacketId> packet_order(const TileParams& params, const Tile& tile,
+                                       const std::vector<t2::ComponentGeometry>& geometry) {
   auto full_order = [&](t2::Order order) {
     return t2::progression(order, params.cod.layers, tile.rect.x0, tile.rect.y0, tile.rect.x1, tile.rect.y1, geometry);
   };
@@ -271,7 +284,8 @@ std::vector<t2::PacketId> packet_order(const TileParams& params, const Tile& til
   // Each progression filters a whole progression of the tile: refuse what would take too long.
   if (static_cast<double>(params.poc.size()) * static_cast<double>(total) * static_cast<double>(layers) > 5e8)
     throw DecodeError("tile " + std::to_string(tile.index) + ": " + std::to_string(params.poc.size()) +
-                      " progression changes over " + std::to_string(total * layers) + " packets is more than the decoder walks");
+                      " progression changes over " + std::to_string(total * layers) +
+                      " packets is more than the decoder walks");
   std::vector<bool> sent(total * layers, false);
   std::vector<std::vector<t2::PacketId>> by_order(5);
   std::vector<t2::PacketId> out;
@@ -283,7 +297,9 @@ std::vector<t2::PacketId> packet_order(const TileParams& params, const Tile& til
           id.component < change.comp_start || id.component >= change.comp_end)
         continue;
       const std::size_t bit = (first[static_cast<std::size_t>(id.component)][static_cast<std::size_t>(id.resolution)] +
-                               static_cast<std::size_t>(id.precinct)) * layers + static_cast<std::size_t>(id.layer);
+                               static_cast<std::size_t>(id.precinct)) *
+                                  layers +
+                              static_cast<std::size_t>(id.layer);
       if (sent[bit]) continue;
       sent[bit] = true;
       out.push_back(id);
@@ -313,7 +329,8 @@ double tile_working_set(const Codestream& cs, const TileParams& params, int tile
     const CodingStyle style{coding.levels, coding.xcb, coding.ycb, coding.precincts};
     for (int r = 0; r <= coding.levels; ++r) {
       const int shift = coding.levels - r;
-      const Rect res{ceil_shift(tc.x0, shift), ceil_shift(tc.y0, shift), ceil_shift(tc.x1, shift), ceil_shift(tc.y1, shift)};
+      const Rect res{ceil_shift(tc.x0, shift), ceil_shift(tc.y0, shift), ceil_shift(tc.x1, shift),
+                     ceil_shift(tc.y1, shift)};
       if (res.empty()) continue;
       const auto [ppx, ppy] = style.precinct(r);
       const double pw = static_cast<double>(ceil_shift(res.x1, ppx) - floor_shift(res.x0, ppx));
@@ -321,8 +338,9 @@ double tile_working_set(const Codestream& cs, const TileParams& params, int tile
       const int bands = r == 0 ? 1 : 3;
       const int bx = std::min(coding.xcb, r == 0 ? ppx : ppx - 1), by = std::min(coding.ycb, r == 0 ? ppy : ppy - 1);
       // Code-blocks of a band: its cells plus one per precinct edge that cuts a cell.
-      const double cells = (std::ceil(static_cast<double>(res.width()) / 2 / std::ldexp(1.0, std::max(bx, 0))) + pw + 1) *
-                           (std::ceil(static_cast<double>(res.height()) / 2 / std::ldexp(1.0, std::max(by, 0))) + ph + 1);
+      const double cells =
+          (std::ceil(static_cast<double>(res.width()) / 2 / std::ldexp(1.0, std::max(bx, 0))) + pw + 1) *
+          (std::ceil(static_cast<double>(res.height()) / 2 / std::ldexp(1.0, std::max(by, 0))) + ph + 1);
       const double blocks = r == 0 ? cells * 2 : cells * bands;
       bytes += pw * ph * (sizeof(Precinct) + bands * (sizeof(PrecinctBand) + 2 * sizeof(TagTreeDecoder) + 64));
       bytes += pw * ph * static_cast<double>(params.cod.layers) * sizeof(t2::PacketId);
@@ -332,18 +350,20 @@ double tile_working_set(const Codestream& cs, const TileParams& params, int tile
   return bytes;
 }
 
-void decode_tile(const Codestream& cs, const TileStream& tile_stream, const TileDecodeSetup& setup, DecodedImage& image) {
+void decode_tile(const Codestream& cs, const TileStream& tile_stream, const TileDecodeSetup& setup,
+                 DecodedImage& image) {
   const DecodeOptions& options = *setup.options;
   const TileParams params = resolve_tile_params(cs, tile_stream);
   const int reduce = options.reduce;
   for (std::size_t c = 0; c < params.components.size(); ++c)
     if (params.components[c].coding.levels < reduce)
-      throw DecodeError("--reduce " + std::to_string(reduce) + " exceeds the " + std::to_string(params.components[c].coding.levels) +
-                        " decomposition levels of component " + std::to_string(c) + " in tile " + std::to_string(tile_stream.index));
+      throw DecodeError("--reduce " + std::to_string(reduce) + " exceeds the " +
+                        std::to_string(params.components[c].coding.levels) + " decomposition levels of component " +
+                        std::to_string(c) + " in tile " + std::to_string(tile_stream.index));
   const double need = tile_working_set(cs, params, tile_stream.index, reduce);
   if (need > static_cast<double>(setup.memory_budget))
-    throw DecodeError("tile " + std::to_string(tile_stream.index) + " would need about " + std::to_string(static_cast<long long>(need / 1048576)) +
-                      " MiB, over the memory limit");
+    throw DecodeError("tile " + std::to_string(tile_stream.index) + " would need about " +
+                      std::to_string(static_cast<long long>(need / 1048576)) + " MiB, over the memory limit");
 
   Tile tile;
   try {
@@ -390,9 +410,11 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     ctx.packed = tile_stream.packed_headers ? &packed : nullptr;
     ctx.style = t1::BlockStyle::from_spcod(params.components[c].coding.block_style);
     ctx.ht = is_ht(params.components[c].coding);
-    ctx.keep = (options.max_layers <= 0 || id.layer < options.max_layers) && id.resolution <= tc.levels - reduce && needed[c];
+    ctx.keep =
+        (options.max_layers <= 0 || id.layer < options.max_layers) && id.resolution <= tc.levels - reduce && needed[c];
     try {
-      pos = read_packet(data, pos, tile_stream.first_offset, tc.resolutions[r].precincts[k], id.layer, trees[c][r][k], blocks, ctx);
+      pos = read_packet(data, pos, tile_stream.first_offset, tc.resolutions[r].precincts[k], id.layer, trees[c][r][k],
+                        blocks, ctx);
     } catch (const PacketTruncated& e) {
       image.warnings.push_back("truncated: tile " + std::to_string(tile_stream.index) + ": " + e.what() +
                                "; the tile is decoded from the packets before it");
@@ -411,9 +433,12 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     plane.rect = tc.resolutions[static_cast<std::size_t>(tc.levels - reduce)].rect;
     plane.reversible = params.components[c].coding.reversible;
     const std::size_t n = static_cast<std::size_t>(plane.rect.width()) * static_cast<std::size_t>(plane.rect.height());
-    if (plane.reversible) plane.ints.assign(n, 0);
-    else plane.floats.assign(n, 0.0f);
-    decode_blocks(tc, params.components[c], size, reduce, tile_component_rect(setup.window, size.dx, size.dy), blocks, plane);
+    if (plane.reversible)
+      plane.ints.assign(n, 0);
+    else
+      plane.floats.assign(n, 0.0f);
+    decode_blocks(tc, params.components[c], size, reduce, tile_component_rect(setup.window, size.dx, size.dy), blocks,
+                  plane);
     try {
       inverse_dwt(plane, tc.levels - reduce, setup);
     } catch (const dwt::DwtError& e) {

@@ -16,8 +16,8 @@ struct TileDecodeSetup {
   dwt::DwtBackend* reversible_backend = nullptr;    // CPU lifting (exact 5/3)
   dwt::DwtBackend* irreversible_backend = nullptr;  // CPU or GPU 9/7
   std::size_t memory_budget = 0;                    // for this tile's working set
-  Rect window;                 // the part of the image wanted, on the reference grid
-  std::vector<bool> selected;  // per codestream component: output or not
+  Rect window;                                      // the part of the image wanted, on the reference grid
+  std::vector<bool> selected;                       // per codestream component: output or not
 };
 
 // Bytes one tile's structures and planes would need (an upper bound), so that a hostile header is

@@ -223,15 +223,18 @@ DwtChoice choose_dwt(const EncodeParams& params, double samples, base::ThreadPoo
   };
   if (params.engine) {
     bool made_now = false;
-    const EncodeEngine::Gpu& shared = params.engine->gpu(hardware, [&] {
-      MadeGpu made = hardware ? make_hardware_gpu(*cpu) : make_any_gpu();
-      take_times(made);
-      EncodeEngine::Gpu kept;
-      kept.failure = made.failure;
-      kept.costs = made.costs;
-      if (made.gpu) kept.gpu = std::make_shared<dwt_gpu::SharedGpu>(std::move(made.gpu));
-      return kept;
-    }, made_now);
+    const EncodeEngine::Gpu& shared = params.engine->gpu(
+        hardware,
+        [&] {
+          MadeGpu made = hardware ? make_hardware_gpu(*cpu) : make_any_gpu();
+          take_times(made);
+          EncodeEngine::Gpu kept;
+          kept.failure = made.failure;
+          kept.costs = made.costs;
+          if (made.gpu) kept.gpu = std::make_shared<dwt_gpu::SharedGpu>(std::move(made.gpu));
+          return kept;
+        },
+        made_now);
     failure = shared.failure;
     costs = shared.costs;
     if (shared.gpu) {
@@ -260,8 +263,9 @@ DwtChoice choose_dwt(const EncodeParams& params, double samples, base::ThreadPoo
   if (!gpu) return use_cpu(failure + "; the 9/7 runs on the CPU");
   const double gpu_ms = costs->gpu_setup_ms + costs->gpu_ns_per_sample * samples * 1e-6;
   const double cpu_ms = costs->cpu_ns_per_sample * samples * 1e-6;
-  const std::string prediction = "predicted " + fixed(gpu_ms, 1) + " ms on " + renderer + " against " + fixed(cpu_ms, 1) +
-                                 " ms on the CPU (costs " + (measured_now ? "measured now" : "from the cache") + ")";
+  const std::string prediction = "predicted " + fixed(gpu_ms, 1) + " ms on " + renderer + " against " +
+                                 fixed(cpu_ms, 1) + " ms on the CPU (costs " +
+                                 (measured_now ? "measured now" : "from the cache") + ")";
   if (gpu_pays_off(*costs, samples)) {
     choice.name = gpu_name(renderer);
     choice.backend = std::move(gpu);

@@ -75,7 +75,9 @@ cs::MainHeader main_header(const SourceImage& image, const EncodeParams& params,
     cs::Quantization q = quantization(c);
     if (q.guard_bits != h.qcd.guard_bits || q.steps.size() != h.qcd.steps.size() ||
         !std::equal(q.steps.begin(), q.steps.end(), h.qcd.steps.begin(),
-                    [](const cs::StepSize& a, const cs::StepSize& b) { return a.exponent == b.exponent && a.mantissa == b.mantissa; }))
+                    [](const cs::StepSize& a, const cs::StepSize& b) {
+                      return a.exponent == b.exponent && a.mantissa == b.mantissa;
+                    }))
       h.qccs.push_back(cs::Qcc{static_cast<unsigned>(c), q});
   }
   if (!params.comment.empty()) h.comments.push_back(cs::latin_comment(params.comment));
@@ -117,7 +119,8 @@ std::vector<int> settle_guard_bits(std::vector<CodedTile>& tiles, const CodingPl
 Tier1Target tier1_target(const Tile& tile, const EncodeParams& params, double samples, double peak) {
   if (!params.skip_passes || params.lossless || params.layers.empty()) return {};
   double tile_samples = 0;
-  for (const TileComponent& tc : tile.components) tile_samples += static_cast<double>(tc.rect.width() * tc.rect.height());
+  for (const TileComponent& tc : tile.components)
+    tile_samples += static_cast<double>(tc.rect.width() * tc.rect.height());
   const double share = tile_samples / std::max(1.0, samples);
   const LayerTarget& last = params.layers.back();
   if (last.kind == LayerTarget::Kind::Bytes) return {Tier1Target::Kind::Bytes, 0.97 * last.value * share};
@@ -140,8 +143,8 @@ std::size_t write_tile_packets(const CodedTile& coded, const EncodeParams& param
     t2::ComponentGeometry cg;
     auto& by_resolution = writers[static_cast<std::size_t>(tc.component)];
     for (const Resolution& res : tc.resolutions) {
-      cg.resolutions.push_back(t2::ResolutionGeometry{res.rect.x0, res.rect.y0, res.rect.x1, res.rect.y1, res.ppx, res.ppy,
-                                                      res.precincts_wide, res.precincts_high});
+      cg.resolutions.push_back(t2::ResolutionGeometry{res.rect.x0, res.rect.y0, res.rect.x1, res.rect.y1, res.ppx,
+                                                      res.ppy, res.precincts_wide, res.precincts_high});
       auto& list = by_resolution.emplace_back();
       for (const Precinct& p : res.precincts) {
         std::vector<t2::PrecinctBand> bands;
@@ -195,9 +198,12 @@ std::vector<std::uint8_t> tile_body(const CodedTile& coded, const EncodeParams& 
 // The codestream as the file `format` asks for: bare, or in a JP2 or JPH file's boxes.
 std::vector<std::uint8_t> in_file(FileFormat format, std::vector<std::uint8_t> codestream, const cs::Siz& siz) {
   switch (format) {
-    case FileFormat::Jp2: return cs::wrap_jp2(codestream, cs::jp2_header_for(siz));
-    case FileFormat::Jph: return cs::wrap_jph(codestream, cs::jp2_header_for(siz));
-    case FileFormat::Codestream: break;
+    case FileFormat::Jp2:
+      return cs::wrap_jp2(codestream, cs::jp2_header_for(siz));
+    case FileFormat::Jph:
+      return cs::wrap_jph(codestream, cs::jp2_header_for(siz));
+    case FileFormat::Codestream:
+      break;
   }
   return codestream;
 }
@@ -208,7 +214,9 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
   if (format == FileFormat::Jph && !params.ht)
     throw std::invalid_argument("a JPH (.jph) file holds an HTJ2K codestream: turn on HT coding (--ht)");
   using Clock = std::chrono::steady_clock;
-  auto since = [](Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); };
+  auto since = [](Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  };
   EncodeReport report;
   // Stage 0: the plan, one set of worker threads for every stage, and where the DWT runs.
   const auto setup_start = Clock::now();
@@ -238,9 +246,10 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
   const std::size_t all_blocks = params.progress ? count_code_blocks(plan) : 0;
   std::size_t blocks_before = 0;
   for (int t = 0; t < count; ++t) {
-    const Tier1Target target = tier1_target(build_tile(plan.grid, plan.sampling, plan.styles, t), params, samples, peak);
-    tiles.push_back(code_tile(image, consumable, plan, params, t, *dwt.backend, reversible_dwt, pool, report.times, target,
-                              blocks_before, all_blocks));
+    const Tier1Target target =
+        tier1_target(build_tile(plan.grid, plan.sampling, plan.styles, t), params, samples, peak);
+    tiles.push_back(code_tile(image, consumable, plan, params, t, *dwt.backend, reversible_dwt, pool, report.times,
+                              target, blocks_before, all_blocks));
     blocks_before += tiles.back().blocks.size();
   }
   const std::vector<int> guard_bits = settle_guard_bits(tiles, plan);
@@ -251,7 +260,8 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
   const Assembler assemble = [&](const LayerPasses& passes) {
     cs::CodestreamWriter writer(header);
     for (std::size_t t = 0; t < tiles.size(); ++t)
-      writer.add_tile_part(static_cast<unsigned>(tiles[t].tile.index), 0, 1, tile_body(tiles[t], params, passes[t], layers));
+      writer.add_tile_part(static_cast<unsigned>(tiles[t].tile.index), 0, 1,
+                           tile_body(tiles[t], params, passes[t], layers));
     std::vector<std::uint8_t> codestream = writer.finish();
     return in_file(format, std::move(codestream), header.siz);
   };
@@ -267,14 +277,15 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
   const FileSizer file_size = [&](const LayerPasses& trial) {
     std::size_t bytes = fixed_bytes;
     std::vector<std::uint8_t> scratch;
-    for (std::size_t t = 0; t < tiles.size(); ++t) bytes += write_tile_packets(tiles[t], params, trial[t], layers, scratch, false);
+    for (std::size_t t = 0; t < tiles.size(); ++t)
+      bytes += write_tile_packets(tiles[t], params, trial[t], layers, scratch, false);
     // A JP2 codestream box past 4 GiB takes a longer header: measure such a file whole.
     return bytes < 0xFFFF0000u ? bytes : assemble(trial).size();
   };
-  const LayerPasses passes = params.layers.empty()
-                                 ? every_pass(tiles, layers)
-                                 : control_rate(tiles, RateControlInputs{image, plan, params, samples, peak, pool},
-                                                file_size, report);
+  const LayerPasses passes =
+      params.layers.empty()
+          ? every_pass(tiles, layers)
+          : control_rate(tiles, RateControlInputs{image, plan, params, samples, peak, pool}, file_size, report);
 
   // Stage 6: tier-2 and the codestream.
   const auto tier2_start = Clock::now();
@@ -291,7 +302,8 @@ std::vector<std::uint8_t> encode(const SourceImage& image, const EncodeParams& p
   return encode_image(image, nullptr, params, format, report);
 }
 
-std::vector<std::uint8_t> encode(SourceImage&& image, const EncodeParams& params, FileFormat format, EncodeReport* report) {
+std::vector<std::uint8_t> encode(SourceImage&& image, const EncodeParams& params, FileFormat format,
+                                 EncodeReport* report) {
   // PSNR targets compare the rebuilt image with the source to the end, so they keep it.
   const bool needs_source = !params.layers.empty() && params.layers[0].kind == LayerTarget::Kind::Psnr;
   return encode_image(image, needs_source ? nullptr : &image, params, format, report);

@@ -25,8 +25,8 @@ struct HtPoint {
 
 struct HtCandidates {
   std::vector<std::optional<t1::EncodedBlock>> by_plane;  // [p]: the codeword from plane p, once coded
-  std::vector<HtPoint> points;  // each truncation point rate control sees, highest first
-  bool skipped = false;         // not coded at all: its energy was worth too little (see ht_rate.h)
+  std::vector<HtPoint> points;                            // each truncation point rate control sees, highest first
+  bool skipped = false;  // not coded at all: its energy was worth too little (see ht_rate.h)
   // Skipped blocks: an upper bound of the slope any of its points could have (ht_rate.cpp's
   // slope_bound), against which rate control checks whether skipping it was too soon.
   double slope_bound = 0;

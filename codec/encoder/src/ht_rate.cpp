@@ -39,8 +39,8 @@ double slope_bound(const std::vector<ht::PlaneStatistics>& stats, double weight,
   const double energy = stats.back().error;
   double bound = 0;
   for (int p = planes - 1; p >= 0; --p) {
-    const double bytes =
-        std::max(kLeastCleanupBytes, kModelBytesMargin * bytes_per_bit * model_bits(stats[static_cast<std::size_t>(p)]));
+    const double bytes = std::max(kLeastCleanupBytes,
+                                  kModelBytesMargin * bytes_per_bit * model_bits(stats[static_cast<std::size_t>(p)]));
     const double bought = energy - stats[static_cast<std::size_t>(std::max(0, p - 1))].error;
     bound = std::max(bound, weight * bought / bytes);
   }
@@ -63,7 +63,8 @@ std::vector<t1::PassInfo> estimated_points(const std::vector<ht::PlaneStatistics
 }
 
 // The plane whose cleanup the estimate takes at `threshold`; -1: none.
-int estimated_plane(const std::vector<ht::PlaneStatistics>& stats, double weight, double threshold, double bytes_per_bit) {
+int estimated_plane(const std::vector<ht::PlaneStatistics>& stats, double weight, double threshold,
+                    double bytes_per_bit) {
   const int planes = static_cast<int>(stats.size()) - 1;
   const std::vector<rate::HullPoint> hull = rate::convex_hull(estimated_points(stats, bytes_per_bit), weight);
   const std::size_t points = rate::points_at_or_above(hull, threshold);
@@ -100,12 +101,13 @@ double bytes_per_model_bit(const CodedTile& coded, const std::vector<std::size_t
 
 }  // namespace
 
-void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier1Target& target,
-                        base::ThreadPool& pool, const std::function<void()>& block_done) {
+void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier1Target& target, base::ThreadPool& pool,
+                        const std::function<void()>& block_done) {
   const std::size_t n = coded.jobs.size();
   coded.ht_candidates.assign(n, HtCandidates{});
   // Every plane of the listed blocks; their statistics kept when asked for.
-  auto code_every_plane = [&](const std::vector<std::size_t>& which, std::vector<std::vector<ht::PlaneStatistics>>* stats) {
+  auto code_every_plane = [&](const std::vector<std::size_t>& which,
+                              std::vector<std::vector<ht::PlaneStatistics>>* stats) {
     if (stats) stats->assign(which.size(), {});
     pool.parallel_for(which.size(), [&](std::size_t k) {
       const std::size_t b = which[k];
@@ -149,7 +151,8 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
     } else if (block.bit_planes > 0) {
       const int top = block.bit_planes - 1;
       const int cut = estimated_plane(stats, job.weight, threshold, bytes_per_bit);
-      const std::vector<int> planes = cut < 0 ? std::vector<int>{top} : planes_between(std::max(0, cut - 1), std::min(top, cut + 1));
+      const std::vector<int> planes =
+          cut < 0 ? std::vector<int>{top} : planes_between(std::max(0, cut - 1), std::min(top, cut + 1));
       add_candidates(c, block, planes);
     }
     coded.blocks[b] = truncation_points(c, block.bit_planes, energy);
@@ -202,7 +205,8 @@ void extend_ht_candidates(std::vector<CodedTile>& tiles, const std::vector<HtExt
 
 void sync_ht_missing_msbs(std::vector<CodedTile>& tiles) {
   for (CodedTile& coded : tiles)
-    for (std::size_t b = 0; b < coded.ht_candidates.size(); ++b) sync_missing_msbs(coded.ht_candidates[b], coded.blocks[b]);
+    for (std::size_t b = 0; b < coded.ht_candidates.size(); ++b)
+      sync_missing_msbs(coded.ht_candidates[b], coded.blocks[b]);
 }
 
 void settle_ht_choices(std::vector<CodedTile>& tiles, LayerPasses& passes) {

@@ -24,8 +24,8 @@ namespace codec {
 // Tier-1 of a tile's HT blocks under a target: fills coded.ht_candidates, and coded.blocks with
 // their truncation points. With no target to predict from (or few blocks) every block gets every
 // plane. `block_done` is called once per block, from any worker thread.
-void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier1Target& target,
-                        base::ThreadPool& pool, const std::function<void()>& block_done);
+void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier1Target& target, base::ThreadPool& pool,
+                        const std::function<void()>& block_done);
 
 // A block whose allocation might change with more planes coded, and those planes.
 struct HtExtension {

@@ -27,8 +27,6 @@ StepSize encode_step(double delta, int range_bits) {
   return StepSize{exponent, mantissa};
 }
 
-double step_value(StepSize s, int range_bits) {
-  return std::ldexp(1.0 + s.mantissa / 2048.0, range_bits - s.exponent);
-}
+double step_value(StepSize s, int range_bits) { return std::ldexp(1.0 + s.mantissa / 2048.0, range_bits - s.exponent); }
 
 }  // namespace codec

@@ -102,7 +102,7 @@ LayerPasses select_for_bytes(const std::vector<CodedTile>& tiles, const rate::Ra
   std::size_t best_size = overhead;
   const std::size_t close_enough = target - std::max<std::size_t>(target / 20000, 4);
   const double aim = 0.5 * (static_cast<double>(close_enough) + static_cast<double>(target));
-  double lo = 0, hi = 1.05;                                    // fits at lo, overflows at hi
+  double lo = 0, hi = 1.05;  // fits at lo, overflows at hi
   double excess_lo = static_cast<double>(overhead) - aim, excess_hi = 0;
   bool hi_known = false;
   int kept_side = 0;  // +1: lo moved last time, -1: hi moved
@@ -159,9 +159,8 @@ struct StarvedBlock {
   t1::StopRule stop;  // min_slope 0: every pass
 };
 
-std::vector<StarvedBlock> starved_blocks(const std::vector<CodedTile>& tiles,
-                                                                const LayerPasses& passes,
-                                                                const std::vector<std::vector<rate::HullPoint>>& hulls) {
+std::vector<StarvedBlock> starved_blocks(const std::vector<CodedTile>& tiles, const LayerPasses& passes,
+                                         const std::vector<std::vector<rate::HullPoint>>& hulls) {
   const double lowest_slope = lowest_slope_taken(tiles, passes, hulls);
   std::vector<StarvedBlock> starved;
   for (std::size_t t = 0; t < tiles.size(); ++t)
@@ -232,7 +231,8 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
     in.pool.parallel_for(starved.size(), [&](std::size_t k) {
       CodedTile& tile = tiles[starved[k].tile];
       const std::size_t b = starved[k].block;
-      t1::EncodedBlock eb = code_block(tile, tile.jobs[b], in.params, tile.block_magnitude_bitplanes[b], starved[k].stop);
+      t1::EncodedBlock eb =
+          code_block(tile, tile.jobs[b], in.params, tile.block_magnitude_bitplanes[b], starved[k].stop);
       eb.missing_msbs = tile.blocks[b].missing_msbs;  // unchanged: the same bit-planes
       tile.blocks[b] = std::move(eb);
     });

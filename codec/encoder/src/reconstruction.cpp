@@ -10,8 +10,8 @@ namespace codec {
 
 double rebuilt_squared_error(const SourceImage& image, const CodingPlan& plan, const EncodeParams& params,
                              const std::vector<CodedTile>& tiles,
-                             const std::vector<std::vector<std::vector<int>>>& passes, int layer,
-                             dwt::DwtBackend& dwt, base::ThreadPool& pool) {
+                             const std::vector<std::vector<std::vector<int>>>& passes, int layer, dwt::DwtBackend& dwt,
+                             base::ThreadPool& pool) {
   double total = 0;
   for (std::size_t t = 0; t < tiles.size(); ++t) {
     const CodedTile& coded = tiles[t];
@@ -55,7 +55,8 @@ double rebuilt_squared_error(const SourceImage& image, const CodingPlan& plan, c
       dp.levels = tc.levels;
       dp.origin = dwt::Origin{tc.rect.x0, tc.rect.y0};
       dp.levels_may_exceed_size = true;
-      dwt.inverse(dwt::make_span(planes[c].data(), static_cast<int>(tc.rect.width()), static_cast<int>(tc.rect.height())), dp);
+      dwt.inverse(
+          dwt::make_span(planes[c].data(), static_cast<int>(tc.rect.width()), static_cast<int>(tc.rect.height())), dp);
     }
     if (plan.ict) {  // T.800 G-10
       for (std::size_t i = 0; i < planes[0].size(); ++i) {

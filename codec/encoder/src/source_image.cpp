@@ -42,7 +42,8 @@ SourceImage to_source_image(imageio::PackedImage&& image, const std::string& pat
 const std::int32_t* source_row(const SourceImage& image, std::size_t c, std::size_t y, std::size_t x0, std::size_t n,
                                std::int32_t* scratch) {
   if (!image.packed) return image.components[c].samples.data() + y * static_cast<std::size_t>(image.width) + x0;
-  image.packed->unpack_row(static_cast<int>(c), static_cast<int>(y), static_cast<int>(x0), static_cast<int>(n), scratch);
+  image.packed->unpack_row(static_cast<int>(c), static_cast<int>(y), static_cast<int>(x0), static_cast<int>(n),
+                           scratch);
   return scratch;
 }
 

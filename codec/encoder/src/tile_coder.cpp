@@ -29,9 +29,12 @@ int log2_exact(int v) { return std::countr_zero(static_cast<unsigned>(v)); }
 // log2 of the nominal gain of each subband (T.800 Table E.1): 0 for LL, 1 for HL and LH, 2 for HH.
 int band_gain(BandOrientation o) {
   switch (o) {
-    case BandOrientation::LL: return 0;
-    case BandOrientation::HH: return 2;
-    default: return 1;
+    case BandOrientation::LL:
+      return 0;
+    case BandOrientation::HH:
+      return 2;
+    default:
+      return 1;
   }
 }
 
@@ -52,12 +55,12 @@ std::vector<BandOrientation> qcd_order(int levels) {
   return out;
 }
 
-
 }  // namespace
 
 std::size_t count_code_blocks(const CodingPlan& plan) {
   std::size_t total = 0;
-  for (int t = 0; t < plan.grid.tile_count(); ++t) total += build_tile(plan.grid, plan.sampling, plan.styles, t).code_blocks;
+  for (int t = 0; t < plan.grid.tile_count(); ++t)
+    total += build_tile(plan.grid, plan.sampling, plan.styles, t).code_blocks;
   return total;
 }
 
@@ -80,7 +83,8 @@ CodingPlan make_plan(const SourceImage& image, const EncodeParams& params) {
     // Finest resolution first on the command line; halve the last entry for coarser resolutions.
     style.precincts.resize(static_cast<std::size_t>(params.levels + 1));
     for (int r = params.levels, i = 0; r >= 0; --r, ++i) {
-      const auto& given = params.precincts[static_cast<std::size_t>(std::min<int>(i, static_cast<int>(params.precincts.size()) - 1))];
+      const auto& given =
+          params.precincts[static_cast<std::size_t>(std::min<int>(i, static_cast<int>(params.precincts.size()) - 1))];
       int ppx = log2_exact(given.first), ppy = log2_exact(given.second);
       const int extra = std::max(0, i - static_cast<int>(params.precincts.size()) + 1);
       const int floor_exp = r == 0 ? 0 : 1;
@@ -142,9 +146,8 @@ constexpr std::size_t kRowsPerItem = 16;
 // Calls rows(y0, y1) for consecutive chunks of [0, height) on the pool.
 template <class Rows>
 void for_row_chunks(base::ThreadPool& pool, std::size_t height, Rows&& rows) {
-  pool.parallel_for((height + kRowsPerItem - 1) / kRowsPerItem, [&](std::size_t item) {
-    rows(item * kRowsPerItem, std::min(height, (item + 1) * kRowsPerItem));
-  });
+  pool.parallel_for((height + kRowsPerItem - 1) / kRowsPerItem,
+                    [&](std::size_t item) { rows(item * kRowsPerItem, std::min(height, (item + 1) * kRowsPerItem)); });
 }
 
 // Stage 1: each tile-component's samples, DC level shifted (T.800 G.1.2) and, for three equal
@@ -152,7 +155,7 @@ void for_row_chunks(base::ThreadPool& pool, std::size_t height, Rows&& rows) {
 // Lossless planes are integers; lossy ones floats, ready for the 9/7.
 struct TilePlanes {
   std::vector<imageio::SamplePlane> integers;  // lossless
-  std::vector<FloatPlane> floats;                   // lossy
+  std::vector<FloatPlane> floats;              // lossy
 };
 
 // Whether a lossless tile can take the source's planes and transform them where they are: the
@@ -162,7 +165,8 @@ bool can_take_source(const SourceImage* consumable, const CodingPlan& plan, cons
   for (std::size_t c = 0; c < tile.components.size(); ++c) {
     const Rect& r = tile.components[c].rect;
     if (r.x0 != plan.grid.image.x0 || r.y0 != plan.grid.image.y0 || r.width() != consumable->width ||
-        r.height() != consumable->height || consumable->components[c].samples.size() != static_cast<std::size_t>(r.width() * r.height()))
+        r.height() != consumable->height ||
+        consumable->components[c].samples.size() != static_cast<std::size_t>(r.width() * r.height()))
       return false;
   }
   return true;
@@ -197,7 +201,8 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
     if (in_place)
       out.integers[c] = std::move(consumable->components[c].samples);
     else
-      lossless ? imageio::resize_with_huge_pages(out.integers[c], n) : imageio::resize_with_huge_pages(out.floats[c], n);
+      lossless ? imageio::resize_with_huge_pages(out.integers[c], n)
+               : imageio::resize_with_huge_pages(out.floats[c], n);
   }
   const bool mct = plan.rct || plan.ict;
   const TileComponent& first = tile.components[0];
@@ -208,7 +213,8 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
     const TileComponent& tc = tile.components[c];
     const std::size_t sy = static_cast<std::size_t>(tc.rect.y0 - plan.grid.image.y0) + y;
     const std::size_t sx = static_cast<std::size_t>(tc.rect.x0 - plan.grid.image.x0);
-    if (in_place) return static_cast<const std::int32_t*>(out.integers[c].data() + sy * static_cast<std::size_t>(image.width) + sx);
+    if (in_place)
+      return static_cast<const std::int32_t*>(out.integers[c].data() + sy * static_cast<std::size_t>(image.width) + sx);
     return codec::source_row(image, c, sy, sx, static_cast<std::size_t>(tc.rect.width()), scratch);
   };
   auto shift_of = [&](std::size_t c) {
@@ -456,9 +462,10 @@ ht::HtBlock load_ht_block(const CodedTile& coded, const BlockJob& job, const Enc
   const std::ptrdiff_t offset = static_cast<std::ptrdiff_t>(job.y0 * job.plane_width + job.x0);
   const auto stride = static_cast<std::ptrdiff_t>(job.plane_width);
   if (params.lossless)
-    return ht::load_ht_block(t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height});
-  return ht::load_ht_block(
-      t1::FloatBlock{coded.coefficients[job.component].data() + offset, stride, job.width, job.height, job.inverse_step});
+    return ht::load_ht_block(
+        t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height});
+  return ht::load_ht_block(t1::FloatBlock{coded.coefficients[job.component].data() + offset, stride, job.width,
+                                          job.height, job.inverse_step});
 }
 
 t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params,
@@ -469,24 +476,26 @@ t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const E
   const std::ptrdiff_t offset = static_cast<std::ptrdiff_t>(job.y0 * job.plane_width + job.x0);
   const auto stride = static_cast<std::ptrdiff_t>(job.plane_width);
   if (params.ht && params.lossless)
-    return ht::encode_ht_block(t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height},
-                               magnitude_bitplanes, 0, distortion);
-  if (params.ht)
     return ht::encode_ht_block(
-        t1::FloatBlock{coded.coefficients[job.component].data() + offset, stride, job.width, job.height, job.inverse_step},
+        t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height},
         magnitude_bitplanes, 0, distortion);
+  if (params.ht)
+    return ht::encode_ht_block(t1::FloatBlock{coded.coefficients[job.component].data() + offset, stride, job.width,
+                                              job.height, job.inverse_step},
+                               magnitude_bitplanes, 0, distortion);
   if (params.lossless)
-    return t1::encode_block(t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height},
-                            job.orientation, magnitude_bitplanes, params.block_style, stop, distortion);
-  return t1::encode_block(
-      t1::FloatBlock{coded.coefficients[job.component].data() + offset, stride, job.width, job.height, job.inverse_step},
-      job.orientation, magnitude_bitplanes, params.block_style, stop, distortion);
+    return t1::encode_block(
+        t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height},
+        job.orientation, magnitude_bitplanes, params.block_style, stop, distortion);
+  return t1::encode_block(t1::FloatBlock{coded.coefficients[job.component].data() + offset, stride, job.width,
+                                         job.height, job.inverse_step},
+                          job.orientation, magnitude_bitplanes, params.block_style, stop, distortion);
 }
 
-CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan, const EncodeParams& params,
-                    int tile_index,
-                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, base::ThreadPool& pool, StageTimes& times,
-                    Tier1Target target, std::size_t progress_base, std::size_t progress_total) {
+CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan,
+                    const EncodeParams& params, int tile_index, dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt,
+                    base::ThreadPool& pool, StageTimes& times, Tier1Target target, std::size_t progress_base,
+                    std::size_t progress_total) {
   auto clock = Clock::now();
   CodedTile coded;
   coded.tile = build_tile(plan.grid, plan.sampling, plan.styles, tile_index);

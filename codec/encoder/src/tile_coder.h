@@ -22,7 +22,7 @@ namespace codec {
 // (epsilon_b = component precision + log2 gain of the band). Irreversible: an expounded step per
 // subband, the base step divided by the band's synthesis norm.
 struct ComponentQuantization {
-  int precision = 8;   // after the component transform (RCT adds a bit to its colour differences)
+  int precision = 8;  // after the component transform (RCT adds a bit to its colour differences)
   int guard_bits = 2;
   // Per subband in QCD order: LL, then HL, LH, HH per level from coarsest to finest.
   std::vector<int> exponents;
@@ -47,10 +47,10 @@ struct BlockJob {
   std::int64_t x0 = 0, y0 = 0;  // in the tile-component's Mallat layout
   int width = 0, height = 0;
   std::int64_t plane_width = 0;
-  int exponent = 0;             // the band's epsilon_b
-  double weight = 1;            // image-domain squared error per unit of tier-1 distortion (lossy)
-  float inverse_step = 1;       // lossy: 1 / the band's quantisation step
-  float step = 1;               // lossy: the step itself, as dequantisation uses it
+  int exponent = 0;        // the band's epsilon_b
+  double weight = 1;       // image-domain squared error per unit of tier-1 distortion (lossy)
+  float inverse_step = 1;  // lossy: 1 / the band's quantisation step
+  float step = 1;          // lossy: the step itself, as dequantisation uses it
 };
 
 // Pass skipping (code_tile): a sample of the blocks predicts the final slope threshold; the others
@@ -76,16 +76,16 @@ inline constexpr double kStopSafety = 2;
 // A tile after the wavelet transform and tier-1: geometry plus each code-block's codeword.
 struct CodedTile {
   Tile tile;
-  std::vector<t1::EncodedBlock> blocks;  // indexed by CodeBlock::index
+  std::vector<t1::EncodedBlock> blocks;        // indexed by CodeBlock::index
   std::vector<int> block_magnitude_bitplanes;  // the Mb each block was coded with
   // Each tile-component's wavelet coefficients in the Mallat layout, kept so that blocks can be
   // coded again (pass skipping) and the encoder can rebuild what a decoder sees (PSNR targets):
   // reversible integers (lossless), or floats that tier-1 quantises as it loads each block (lossy).
   std::vector<imageio::SamplePlane> quantized;
   std::vector<FloatPlane> coefficients;
-  std::vector<BlockJob> jobs;  // every block, indexed by CodeBlock::index: where it lies, its weight, its step
-  double stop_threshold = 0;                         // the StopRule tier-1 ran with; 0: every pass
-  std::vector<int> guard_bits_needed;    // per component: the fewest guard bits its coefficients fit in
+  std::vector<BlockJob> jobs;          // every block, indexed by CodeBlock::index: where it lies, its weight, its step
+  double stop_threshold = 0;           // the StopRule tier-1 ran with; 0: every pass
+  std::vector<int> guard_bits_needed;  // per component: the fewest guard bits its coefficients fit in
   // HT under a byte or PSNR target: per block, the cleanups coded from several planes, which
   // `blocks` then holds as truncation points (ht_candidates.h) until rate control settles on one.
   // Empty otherwise.
@@ -116,10 +116,10 @@ struct Tier1Target {
 
 // `consumable`: the same image when the caller gave it up (encode(SourceImage&&)); a lossless tile
 // covering it whole then takes its planes instead of copying them. Null otherwise.
-CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan, const EncodeParams& params,
-                    int tile_index,
-                    dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt, base::ThreadPool& pool, StageTimes& times,
-                    Tier1Target target = {}, std::size_t progress_base = 0, std::size_t progress_total = 0);
+CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan,
+                    const EncodeParams& params, int tile_index, dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt,
+                    base::ThreadPool& pool, StageTimes& times, Tier1Target target = {}, std::size_t progress_base = 0,
+                    std::size_t progress_total = 0);
 
 // Tier-1 of one block of a coded tile, from its kept coefficients.
 t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params,

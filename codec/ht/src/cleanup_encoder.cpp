@@ -23,7 +23,10 @@ int exponent(std::uint32_t mu) { return mu == 0 ? 0 : static_cast<int>(std::bit_
 class SampleGrid {
  public:
   SampleGrid(std::span<const std::uint32_t> mu, std::span<const std::uint8_t> negative, int width, int height)
-      : mu_(mu), negative_(negative), width_(width), stride_(static_cast<std::size_t>(width) + 2 * kBorder),
+      : mu_(mu),
+        negative_(negative),
+        width_(width),
+        stride_(static_cast<std::size_t>(width) + 2 * kBorder),
         exponents_(stride_ * (static_cast<std::size_t>(height) + 2), 0) {
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) exponents_[cell(x, y)] = static_cast<std::uint8_t>(exponent(mu[index(x, y)]));
@@ -39,7 +42,9 @@ class SampleGrid {
 
  private:
   static constexpr std::size_t kBorder = 2;
-  std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x); }
+  std::size_t index(int x, int y) const {
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
+  }
   std::size_t cell(int x, int y) const {
     return static_cast<std::size_t>(y + 1) * stride_ + static_cast<std::size_t>(x + static_cast<int>(kBorder));
   }
@@ -55,12 +60,12 @@ class SampleGrid {
 constexpr std::array<std::array<int, 2>, 4> kQuadOffsets{{{0, 0}, {0, 1}, {1, 0}, {1, 1}}};
 
 struct QuadCoding {
-  int x0 = 0, y0 = 0;    // top-left sample
-  int rho = 0;           // significance pattern
-  int context = 0;       // c_q
-  int exponent_bits = 0; // U_q: bits of each significant sample's v_n, before the EMB saving
-  int residual = 0;      // u_q = U_q - kappa_q
-  VlcCode code;          // the CxtVLC codeword, with its e_k pattern
+  int x0 = 0, y0 = 0;     // top-left sample
+  int rho = 0;            // significance pattern
+  int context = 0;        // c_q
+  int exponent_bits = 0;  // U_q: bits of each significant sample's v_n, before the EMB saving
+  int residual = 0;       // u_q = U_q - kappa_q
+  VlcCode code;           // the CxtVLC codeword, with its e_k pattern
 };
 
 // Context c_q of a quad in the first row of quads (T.814 7.3.5): from the four samples of the quad

@@ -51,8 +51,11 @@ constexpr std::array<std::array<int, 2>, 4> kQuadOffsets{{{0, 0}, {0, 1}, {1, 0}
 class DecodedGrid {
  public:
   DecodedGrid(int width, int height)
-      : width_(width), height_(height), mu_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0),
-        negative_(mu_.size(), 0), significant_(mu_.size(), 0) {}
+      : width_(width),
+        height_(height),
+        mu_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0),
+        negative_(mu_.size(), 0),
+        significant_(mu_.size(), 0) {}
   bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < width_ && y < height_; }
   int significant(int x, int y) const { return inside(x, y) ? significant_[index(x, y)] : 0; }
   // E_n = bit length of 2 mu - 1 (T.814 7.3.7), 0 for an insignificant sample.
@@ -121,10 +124,14 @@ UvlcPrefix read_prefix(VlcReader& vlc) {
 // The value a prefix and its suffix give, without the extension.
 int prefix_value(UvlcPrefix prefix, std::uint32_t suffix) {
   switch (prefix) {
-    case UvlcPrefix::One: return 1;
-    case UvlcPrefix::Two: return 2;
-    case UvlcPrefix::ThreeOrFour: return 3 + static_cast<int>(suffix);
-    case UvlcPrefix::FiveOrMore: return 5 + static_cast<int>(suffix);
+    case UvlcPrefix::One:
+      return 1;
+    case UvlcPrefix::Two:
+      return 2;
+    case UvlcPrefix::ThreeOrFour:
+      return 3 + static_cast<int>(suffix);
+    case UvlcPrefix::FiveOrMore:
+      return 5 + static_cast<int>(suffix);
   }
   return 0;
 }
@@ -170,7 +177,8 @@ void read_pair_residuals(VlcReader& vlc, MelDecoder& mel, const bool* has_residu
   for (int k = 0; k < count; ++k)
     if (has_residual[k]) coded[static_cast<std::size_t>(n++)] = k;
   for (int i = 0; i < n; ++i) prefixes[static_cast<std::size_t>(i)] = read_prefix(vlc);
-  for (int i = 0; i < n; ++i) suffixes[static_cast<std::size_t>(i)] = vlc.get(suffix_bits(prefixes[static_cast<std::size_t>(i)]));
+  for (int i = 0; i < n; ++i)
+    suffixes[static_cast<std::size_t>(i)] = vlc.get(suffix_bits(prefixes[static_cast<std::size_t>(i)]));
   for (int i = 0; i < n; ++i)
     u[static_cast<std::size_t>(coded[static_cast<std::size_t>(i)])] =
         finish_uvlc(vlc, prefixes[static_cast<std::size_t>(i)], suffixes[static_cast<std::size_t>(i)]) + bonus;
@@ -221,7 +229,10 @@ void read_magnitudes(DecodedGrid& g, const QuadState& q, int exponent_bits, int 
 class RefinementDecoder {
  public:
   RefinementDecoder(const DecodedGrid& cleanup, int width, int height, bool vertically_causal)
-      : cleanup_(cleanup), width_(width), height_(height), vertically_causal_(vertically_causal),
+      : cleanup_(cleanup),
+        width_(width),
+        height_(height),
+        vertically_causal_(vertically_causal),
         became_significant_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0),
         negative_(became_significant_.size(), 0) {}
 
@@ -256,7 +267,8 @@ class RefinementDecoder {
     for (int y0 = 0; y0 < height_; y0 += 4)
       for (int x = 0; x < width_; ++x)
         for (int y = y0; y < std::min(y0 + 4, height_); ++y)
-          if (cleanup_.significant_after_cleanup(x, y)) refinement_bit[index(x, y)] = static_cast<std::uint8_t>(bits.bit());
+          if (cleanup_.significant_after_cleanup(x, y))
+            refinement_bit[index(x, y)] = static_cast<std::uint8_t>(bits.bit());
   }
 
   bool became_significant(std::size_t i) const { return became_significant_[i] != 0; }
@@ -335,11 +347,12 @@ void decode_ht_block(const HtCodewords& block, int width, int height, std::span<
                         std::to_string(kHtMaxMagnitudeBits - 1));
   // T.814 7.1: Scup, the MEL and VLC bytes' count, in the last byte and the low nibble of the one
   // before it; 2 <= Scup <= min(Lcup, 4079).
-  if (d.size() < 2) throw HtDecodeError("HT cleanup: a segment of " + std::to_string(d.size()) + " byte(s) holds no Scup");
+  if (d.size() < 2)
+    throw HtDecodeError("HT cleanup: a segment of " + std::to_string(d.size()) + " byte(s) holds no Scup");
   const std::size_t scup = (static_cast<std::size_t>(d[d.size() - 1]) << 4) | (d[d.size() - 2] & 0x0F);
   if (scup < 2 || scup > d.size() || scup > 4079)
-    throw HtDecodeError("HT cleanup: Scup " + std::to_string(scup) + " does not fit a segment of " + std::to_string(d.size()) +
-                        " bytes");
+    throw HtDecodeError("HT cleanup: Scup " + std::to_string(scup) + " does not fit a segment of " +
+                        std::to_string(d.size()) + " bytes");
   const std::size_t pcup = d.size() - scup;
   MagSgnReader magsgn(d.first(pcup));
   MelDecoder mel(d.subspan(pcup));
@@ -365,7 +378,8 @@ void decode_ht_block(const HtCodewords& block, int width, int height, std::span<
         const QuadState& q = quads[static_cast<std::size_t>(k)];
         if (q.code.rho == 0) continue;
         const int exponent_bits = exponent_predictor(grid, q.x0, q.y0, q.code.rho) + u[static_cast<std::size_t>(k)];
-        if (exponent_bits > 32) throw HtDecodeError("HT cleanup: a quad exponent U_q of " + std::to_string(exponent_bits));
+        if (exponent_bits > 32)
+          throw HtDecodeError("HT cleanup: a quad exponent U_q of " + std::to_string(exponent_bits));
         read_magnitudes(grid, q, exponent_bits, block.cleanup_plane, magsgn);
       }
     }

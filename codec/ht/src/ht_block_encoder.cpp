@@ -78,7 +78,8 @@ void add_refinement_passes(const HtBlock& b, int p, t1::Distortion distortion, t
   const RefinementSegment segment = encode_refinement(b.magnitudes, b.negative, b.width, b.height, p);
   double sigprop_decrease = 0, magref_decrease = 0;
   if (distortion == t1::Distortion::Measured) {
-    for (const std::size_t i : segment.became_significant) sigprop_decrease += residual_at(b, i, p) - residual_at(b, i, p - 1);
+    for (const std::size_t i : segment.became_significant)
+      sigprop_decrease += residual_at(b, i, p) - residual_at(b, i, p - 1);
     for (std::size_t i = 0; i < b.magnitudes.size(); ++i)
       if ((b.magnitudes[i] >> p) != 0) magref_decrease += residual_at(b, i, p) - residual_at(b, i, p - 1);
   }
@@ -93,11 +94,13 @@ void add_refinement_passes(const HtBlock& b, int p, t1::Distortion distortion, t
 namespace {
 
 // Sign and magnitude of `count` indices into the block from `first` on; returns their OR.
-std::uint32_t split_signs(const std::int32_t* indices, std::size_t count, std::uint32_t* magnitudes, std::uint8_t* negative) {
+std::uint32_t split_signs(const std::int32_t* indices, std::size_t count, std::uint32_t* magnitudes,
+                          std::uint8_t* negative) {
   std::uint32_t all = 0;
   for (std::size_t i = 0; i < count; ++i) {
     const std::int32_t c = indices[i];
-    magnitudes[i] = c < 0 ? static_cast<std::uint32_t>(0) - static_cast<std::uint32_t>(c) : static_cast<std::uint32_t>(c);
+    magnitudes[i] =
+        c < 0 ? static_cast<std::uint32_t>(0) - static_cast<std::uint32_t>(c) : static_cast<std::uint32_t>(c);
     negative[i] = c < 0 ? 1 : 0;
     all |= magnitudes[i];
   }
@@ -106,11 +109,13 @@ std::uint32_t split_signs(const std::int32_t* indices, std::size_t count, std::u
 
 }  // namespace
 
-HtBlock load_ht_block(std::span<const std::int32_t> coefficients, int width, int height, std::span<const std::uint8_t> fractions) {
+HtBlock load_ht_block(std::span<const std::int32_t> coefficients, int width, int height,
+                      std::span<const std::uint8_t> fractions) {
   check_size(width, height);
   const auto n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   if (coefficients.size() != n) throw std::invalid_argument("HT block: expected width * height coefficients");
-  if (!fractions.empty() && fractions.size() != n) throw std::invalid_argument("HT block: expected one fraction per coefficient");
+  if (!fractions.empty() && fractions.size() != n)
+    throw std::invalid_argument("HT block: expected one fraction per coefficient");
   HtBlock b{width, height, std::vector<std::uint32_t>(n), std::vector<std::uint8_t>(n), {}, 0};
   const std::uint32_t all = split_signs(coefficients.data(), n, b.magnitudes.data(), b.negative.data());
   b.fractions.assign(fractions.begin(), fractions.end());
@@ -135,21 +140,27 @@ HtBlock load_ht_block(const t1::FloatBlock& block) {
   check_size(block.width, block.height);
   const auto w = static_cast<std::size_t>(block.width);
   const std::size_t n = w * static_cast<std::size_t>(block.height);
-  HtBlock b{block.width, block.height, std::vector<std::uint32_t>(n), std::vector<std::uint8_t>(n), std::vector<std::uint8_t>(n), 0};
+  HtBlock b{block.width,
+            block.height,
+            std::vector<std::uint32_t>(n),
+            std::vector<std::uint8_t>(n),
+            std::vector<std::uint8_t>(n),
+            0};
   std::vector<std::int32_t> row_indices(w);
   std::uint32_t all = 0;
   for (int y = 0; y < block.height; ++y) {
     const float* row = block.origin + y * block.stride;
     const std::size_t base = static_cast<std::size_t>(y) * w;
-    for (std::size_t x = 0; x < w; ++x) row_indices[x] = t1::quantize(row[x], block.inverse_step, b.fractions[base + x]);
+    for (std::size_t x = 0; x < w; ++x)
+      row_indices[x] = t1::quantize(row[x], block.inverse_step, b.fractions[base + x]);
     all |= split_signs(row_indices.data(), w, b.magnitudes.data() + base, b.negative.data() + base);
   }
   b.bit_planes = static_cast<int>(std::bit_width(all));
   return b;
 }
 
-t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int cleanup_plane, t1::Distortion distortion,
-                                 HtPasses passes) {
+t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int cleanup_plane,
+                                 t1::Distortion distortion, HtPasses passes) {
   if (magnitude_bitplanes < 1 || magnitude_bitplanes > 31)
     throw std::invalid_argument("HT block: Mb must be 1..31, not " + std::to_string(magnitude_bitplanes));
   if (cleanup_plane < 0 || cleanup_plane >= magnitude_bitplanes)
@@ -157,8 +168,8 @@ t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int 
   t1::EncodedBlock out;
   out.bit_planes = b.bit_planes;
   if (out.bit_planes > magnitude_bitplanes)
-    throw std::invalid_argument("HT block: a magnitude needs " + std::to_string(out.bit_planes) + " bit-planes, over Mb = " +
-                                std::to_string(magnitude_bitplanes));
+    throw std::invalid_argument("HT block: a magnitude needs " + std::to_string(out.bit_planes) +
+                                " bit-planes, over Mb = " + std::to_string(magnitude_bitplanes));
   const ErrorSums sums = error_sums(b, cleanup_plane, distortion);
   out.energy = sums.energy;
   if (out.bit_planes <= cleanup_plane) {
@@ -176,7 +187,8 @@ t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int 
   out.missing_msbs = magnitude_bitplanes - 1 - cleanup_plane;
   const double decrease = distortion == t1::Distortion::Measured ? sums.energy - sums.after_cleanup : 0.0;
   out.passes.push_back(t1::PassInfo{out.data.size(), decrease, true});
-  if (passes == HtPasses::CleanupAndRefinement && cleanup_plane > 0) add_refinement_passes(b, cleanup_plane, distortion, out);
+  if (passes == HtPasses::CleanupAndRefinement && cleanup_plane > 0)
+    add_refinement_passes(b, cleanup_plane, distortion, out);
   return out;
 }
 
@@ -209,7 +221,8 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
       for (int k = 0; k < 4; ++k) {
         const int x = x0 + (k >> 1), y = y0 + (k & 1);
         if (x < b.width && y < b.height)
-          m[k] = b.magnitudes[static_cast<std::size_t>(y) * static_cast<std::size_t>(b.width) + static_cast<std::size_t>(x)];
+          m[k] = b.magnitudes[static_cast<std::size_t>(y) * static_cast<std::size_t>(b.width) +
+                              static_cast<std::size_t>(x)];
       }
       const std::uint32_t largest = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
       const int length = static_cast<int>(std::bit_width(largest));
@@ -235,7 +248,8 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
 t1::EncodedBlock encode_ht_block(std::span<const std::int32_t> coefficients, int width, int height,
                                  int magnitude_bitplanes, int cleanup_plane, std::span<const std::uint8_t> fractions,
                                  t1::Distortion distortion) {
-  return encode_ht_block(load_ht_block(coefficients, width, height, fractions), magnitude_bitplanes, cleanup_plane, distortion);
+  return encode_ht_block(load_ht_block(coefficients, width, height, fractions), magnitude_bitplanes, cleanup_plane,
+                         distortion);
 }
 
 t1::EncodedBlock encode_ht_block(const t1::IntegerBlock& block, int magnitude_bitplanes, int cleanup_plane,

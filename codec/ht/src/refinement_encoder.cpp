@@ -71,7 +71,8 @@ class MagRefPacker {
 class Significance {
  public:
   Significance(std::span<const std::uint32_t> magnitudes, int width, int height, int plane)
-      : width_(width), stride_(static_cast<std::size_t>(width) + 2),
+      : width_(width),
+        stride_(static_cast<std::size_t>(width) + 2),
         state_(stride_ * (static_cast<std::size_t>(height) + 2), 0) {
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) state_[cell(x, y)] = (magnitudes[index(x, y)] >> plane) != 0 ? 1 : 0;
@@ -87,10 +88,14 @@ class Significance {
     return (above[0] | above[1] | above[2] | here[0] | here[2] | below[0] | below[1] | below[2]) != 0;
   }
   // The sample's index in the block's row-major arrays.
-  std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x); }
+  std::size_t index(int x, int y) const {
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
+  }
 
  private:
-  std::size_t cell(int x, int y) const { return (static_cast<std::size_t>(y) + 1) * stride_ + static_cast<std::size_t>(x) + 1; }
+  std::size_t cell(int x, int y) const {
+    return (static_cast<std::size_t>(y) + 1) * stride_ + static_cast<std::size_t>(x) + 1;
+  }
 
   int width_;
   std::size_t stride_;
@@ -140,8 +145,8 @@ void magref_pass(std::span<const std::uint32_t> m, int width, int height, int q,
 RefinementSegment encode_refinement(std::span<const std::uint32_t> magnitudes, std::span<const std::uint8_t> negative,
                                     int width, int height, int plane) {
   if (width < 1 || height < 1 || width > 1024 || height > 1024 || width * height > 4096)
-    throw std::invalid_argument("HT refinement: a code-block of " + std::to_string(width) + "x" + std::to_string(height) +
-                                " is outside 1..1024 with at most 4096 samples");
+    throw std::invalid_argument("HT refinement: a code-block of " + std::to_string(width) + "x" +
+                                std::to_string(height) + " is outside 1..1024 with at most 4096 samples");
   const auto samples = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   if (magnitudes.size() != samples || negative.size() != samples)
     throw std::invalid_argument("HT refinement: magnitudes and signs must hold width * height samples");

@@ -18,8 +18,7 @@ void validate(std::span<const t1::PassInfo> passes, double weight) {
       throw std::invalid_argument("pass " + std::to_string(i) + " has a non-finite distortion decrease");
     if (passes[i].length < previous_length)
       throw std::invalid_argument("pass lengths must be non-decreasing; pass " + std::to_string(i) + " has " +
-                                  std::to_string(passes[i].length) + " bytes after " +
-                                  std::to_string(previous_length));
+                                  std::to_string(passes[i].length) + " bytes after " + std::to_string(previous_length));
     previous_length = passes[i].length;
   }
 }

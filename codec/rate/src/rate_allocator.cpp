@@ -149,8 +149,7 @@ Selection RateAllocator::for_distortion(double total_weighted_energy, double max
   const double needed = total_weighted_energy - max_distortion;
   // Shortest prefix k whose distortion reaches `needed`; the whole order if none does.
   const auto reach = std::lower_bound(prefix_distortion_.begin(), prefix_distortion_.end(), needed);
-  const std::size_t prefix =
-      std::min(static_cast<std::size_t>(reach - prefix_distortion_.begin()), order_.size());
+  const std::size_t prefix = std::min(static_cast<std::size_t>(reach - prefix_distortion_.begin()), order_.size());
   return selection_from_points(hulls_, points_in_prefix(prefix));
 }
 

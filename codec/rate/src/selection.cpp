@@ -7,8 +7,8 @@
 namespace codec::rate {
 
 std::size_t points_at_or_above(std::span<const HullPoint> hull, double threshold) {
-  const auto end = std::partition_point(hull.begin(), hull.end(),
-                                        [threshold](const HullPoint& p) { return p.slope >= threshold; });
+  const auto end =
+      std::partition_point(hull.begin(), hull.end(), [threshold](const HullPoint& p) { return p.slope >= threshold; });
   return static_cast<std::size_t>(end - hull.begin());
 }
 

@@ -14,7 +14,8 @@ std::int64_t ceil_shift_signed(std::int64_t a, int e) {
   return a >= 0 ? (a + d - 1) / d : -((-a) / d);
 }
 
-Subband make_subband(const TileComponent& tc, const std::vector<dwt::LevelGeometry>& levels, int nb, BandOrientation o) {
+Subband make_subband(const TileComponent& tc, const std::vector<dwt::LevelGeometry>& levels, int nb,
+                     BandOrientation o) {
   Subband b;
   b.orientation = o;
   b.level = nb;
@@ -39,7 +40,8 @@ PrecinctBand partition(const Subband& band, int band_index, const Rect& region, 
   pb.rows = static_cast<int>(ceil_shift(region.y1, band.ycb) - cy0);
   for (int j = 0; j < pb.rows; ++j)
     for (int i = 0; i < pb.cols; ++i) {
-      const Rect cell{(cx0 + i) << band.xcb, (cy0 + j) << band.ycb, (cx0 + i + 1) << band.xcb, (cy0 + j + 1) << band.ycb};
+      const Rect cell{(cx0 + i) << band.xcb, (cy0 + j) << band.ycb, (cx0 + i + 1) << band.xcb,
+                      (cy0 + j + 1) << band.ycb};
       pb.blocks.push_back(CodeBlock{cell.intersect(region), next_index++});
     }
   return pb;
@@ -108,9 +110,9 @@ Tile build_tile(const ImageGrid& grid, const std::vector<ComponentSampling>& sam
                        .intersect(res.rect);
           for (std::size_t bi = 0; bi < res.bands.size(); ++bi) {
             const Subband& band = res.bands[bi];
-            const Rect region = Rect{(px0 + i) << band_ppx, (py0 + j) << band_ppy, (px0 + i + 1) << band_ppx,
-                                     (py0 + j + 1) << band_ppy}
-                                    .intersect(band.rect);
+            const Rect region =
+                Rect{(px0 + i) << band_ppx, (py0 + j) << band_ppy, (px0 + i + 1) << band_ppx, (py0 + j + 1) << band_ppy}
+                    .intersect(band.rect);
             p.bands.push_back(partition(band, static_cast<int>(bi), region, tile.code_blocks));
           }
           res.precincts.push_back(std::move(p));

@@ -60,7 +60,8 @@ struct PendingPass {
 // Segment bookkeeping: which coder is open, and the passes waiting for the segment's end.
 class SegmentTracker {
  public:
-  SegmentTracker(EncodedBlock& out, const BlockStyle& style) : out_(out), style_(style), mq_(out.data), raw_(out.data) {}
+  SegmentTracker(EncodedBlock& out, const BlockStyle& style)
+      : out_(out), style_(style), mq_(out.data), raw_(out.data) {}
 
   MqEncoder& mq() { return mq_; }
   RawWriter& raw() { return raw_; }
@@ -125,8 +126,10 @@ double code_pass(int pass, int plane, bool raw, const BlockView& v, const ZeroCo
       return raw ? significance_pass_raw<kMeasure>(v, plane, seg.raw())
                  : significance_pass<kMeasure>(v, plane, zc, cx, seg.mq());
     case PassKind::Refinement:
-      return raw ? refinement_pass_raw<kMeasure>(v, plane, seg.raw()) : refinement_pass<kMeasure>(v, plane, cx, seg.mq());
-    case PassKind::Cleanup: break;
+      return raw ? refinement_pass_raw<kMeasure>(v, plane, seg.raw())
+                 : refinement_pass<kMeasure>(v, plane, cx, seg.mq());
+    case PassKind::Cleanup:
+      break;
   }
   const double gain = cleanup_pass<kMeasure>(v, plane, zc, cx, seg.mq());
   if (style.segmentation_symbols) code_segmentation_symbol(cx, seg.mq());
@@ -168,9 +171,9 @@ EncodedBlock encode_state(CoefficientState& state, int width, int height, Orient
   ContextSet cx;
   reset_contexts(cx);
   SegmentTracker seg(out, style);
-  double plane_gain = 0;         // distortion bought by the bit-plane being coded so far
-  std::size_t plane_start = 0;   // estimated bytes when it began
-  int quiet_planes = 0;          // bit-planes in a row that bought less than stop.min_slope
+  double plane_gain = 0;        // distortion bought by the bit-plane being coded so far
+  std::size_t plane_start = 0;  // estimated bytes when it began
+  int quiet_planes = 0;         // bit-planes in a row that bought less than stop.min_slope
   for (int pass = 0; pass < count; ++pass) {
     const bool raw = pass_is_raw(pass, style);
     seg.begin_pass_if_needed(raw);

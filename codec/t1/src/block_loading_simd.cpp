@@ -27,7 +27,7 @@ HWY_INLINE VD AddSquares(DI, VI v, VD sum) {
 }
 #else
 template <class DI>
-using DoubleTag = hn::Rebind<double, hn::Half<DI>>;
+using DoubleTag = hn::Rebind<double, hn::Half<DI> >;
 template <class DI, class VI, class VD>
 HWY_INLINE VD AddSquares(DI, VI v, VD sum) {
   const hn::Half<DI> dh;
@@ -117,7 +117,8 @@ double FixedPointEnergyRow(const float* HWY_RESTRICT row, std::size_t n, float i
   }
   double result = hn::GetLane(hn::SumOfLanes(dd, energy));
   for (; i < n; ++i) {
-    const auto f = static_cast<std::uint32_t>(static_cast<std::int32_t>(scaled_magnitude(row[i], inverse_step) * scale));
+    const auto f =
+        static_cast<std::uint32_t>(static_cast<std::int32_t>(scaled_magnitude(row[i], inverse_step) * scale));
     result += static_cast<double>(f) * static_cast<double>(f);
   }
   return result;

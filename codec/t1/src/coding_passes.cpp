@@ -131,7 +131,8 @@ inline int first_one_in_column(const BlockView& v, std::ptrdiff_t i, int plane) 
 // compiler can keep in registers for the whole pass (see MqEncoder::byte_out). `flatten` makes
 // sure everything is inlined early enough for that to happen.
 template <bool kMeasure>
-[[gnu::flatten]] double significance_pass(const BlockView& v, int plane, const ZeroCodingTable& zc, ContextSet& cx, MqEncoder& mq) {
+[[gnu::flatten]] double significance_pass(const BlockView& v, int plane, const ZeroCodingTable& zc, ContextSet& cx,
+                                          MqEncoder& mq) {
   MqEncoder coder = mq;
   const double gain = significance_pass_impl<kMeasure>(BlockView(v), plane, zc, MqSymbols{coder, cx});
   mq = coder;
@@ -158,7 +159,8 @@ double refinement_pass_raw(const BlockView& v, int plane, RawWriter& raw) {
 
 // D.3.4: everything the significance pass left, with run-length coding of quiet stripe columns.
 template <bool kMeasure>
-[[gnu::flatten]] double cleanup_pass(const BlockView& view, int plane, const ZeroCodingTable& zc, ContextSet& cx, MqEncoder& coder) {
+[[gnu::flatten]] double cleanup_pass(const BlockView& view, int plane, const ZeroCodingTable& zc, ContextSet& cx,
+                                     MqEncoder& coder) {
   const BlockView v = view;
   MqEncoder mq = coder;
   MqSymbols s{mq, cx};

@@ -129,8 +129,16 @@ CoefficientState::CoefficientState(const FloatBlock& block, const FloatBlockPlan
 BlockView CoefficientState::view(bool causal) {
   const std::ptrdiff_t origin = stride_ + 1;
   const std::uint32_t* fine = fine_.empty() ? magnitude_.data() : fine_.data();
-  return BlockView{columns_.data() + origin, stride_, magnitude_.data() + origin, signs_.data() + origin,
-                   width_, height_, stride_, causal, fine + origin, fine_bits_};
+  return BlockView{columns_.data() + origin,
+                   stride_,
+                   magnitude_.data() + origin,
+                   signs_.data() + origin,
+                   width_,
+                   height_,
+                   stride_,
+                   causal,
+                   fine + origin,
+                   fine_bits_};
 }
 
 }  // namespace codec::t1

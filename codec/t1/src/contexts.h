@@ -69,9 +69,15 @@ constexpr ZeroCodingTable make_zero_coding_table(Orientation o) {
     const int d = bit(0) + bit(2) + bit(6) + bit(8);
     switch (o) {
       case Orientation::LL:
-      case Orientation::LH: t[n] = zero_coding_context_lh(h, v, d); break;
-      case Orientation::HL: t[n] = zero_coding_context_lh(v, h, d); break;
-      case Orientation::HH: t[n] = zero_coding_context_hh(h, v, d); break;
+      case Orientation::LH:
+        t[n] = zero_coding_context_lh(h, v, d);
+        break;
+      case Orientation::HL:
+        t[n] = zero_coding_context_lh(v, h, d);
+        break;
+      case Orientation::HH:
+        t[n] = zero_coding_context_hh(h, v, d);
+        break;
     }
   }
   return t;
@@ -83,9 +89,12 @@ inline constexpr ZeroCodingTable kZeroCodingHh = make_zero_coding_table(Orientat
 
 inline const ZeroCodingTable& zero_coding_table(Orientation o) {
   switch (o) {
-    case Orientation::HL: return kZeroCodingHl;
-    case Orientation::HH: return kZeroCodingHh;
-    default: return kZeroCodingLlLh;
+    case Orientation::HL:
+      return kZeroCodingHl;
+    case Orientation::HH:
+      return kZeroCodingHh;
+    default:
+      return kZeroCodingLlLh;
   }
 }
 

@@ -131,7 +131,7 @@ std::size_t minimal_truncation_length(std::span<const std::uint8_t> data, const 
 
   constexpr int kGuard = 24;  // fraction bits below the register's LSB: room for 3 more bytes
   std::uint64_t weight = std::uint64_t{1} << (below + kGuard);  // ulp_L, now L = committed
-  std::uint64_t value = 0;                                     // P_L - P_{committed - 1}
+  std::uint64_t value = 0;                                      // P_L - P_{committed - 1}
   std::uint64_t low = c << kGuard;
   if (committed > start) {
     value = std::uint64_t{data[committed - 1]} * weight;

@@ -15,9 +15,12 @@ inline int pass_count(int planes) { return planes > 0 ? 3 * planes - 2 : 0; }
 inline PassKind pass_kind(int pass) {
   if (pass == 0) return PassKind::Cleanup;
   switch ((pass - 1) % 3) {
-    case 0: return PassKind::Significance;
-    case 1: return PassKind::Refinement;
-    default: return PassKind::Cleanup;
+    case 0:
+      return PassKind::Significance;
+    case 1:
+      return PassKind::Refinement;
+    default:
+      return PassKind::Cleanup;
   }
 }
 
@@ -30,8 +33,8 @@ inline bool pass_is_raw(int pass, const BlockStyle& s) {
   return s.bypass && pass >= 10 && pass_kind(pass) != PassKind::Cleanup;
 }
 
-// Whether the codeword segment ends after this pass (T.800 D.4, D.6): always after the last pass; after every pass with "terminate each pass"; with bypass, wherever the
-// next pass switches between arithmetic and raw coding.
+// Whether the codeword segment ends after this pass (T.800 D.4, D.6): always after the last pass; after every pass with
+// "terminate each pass"; with bypass, wherever the next pass switches between arithmetic and raw coding.
 inline bool pass_ends_segment(int pass, int count, const BlockStyle& s) {
   if (pass == count - 1 || s.terminate_each_pass) return true;
   return s.bypass && pass_is_raw(pass, s) != pass_is_raw(pass + 1, s);

@@ -44,9 +44,7 @@ class RawWriter {
   std::size_t truncation_length() const { return out_->size() + (room_ < capacity_ ? 1 : 0); }
 
   // The same point, to resolve with minimal_raw_truncation_length() once the segment is written.
-  RawTruncationPoint truncation_point() const {
-    return {out_->size(), segment_start_, capacity_ - room_, acc_};
-  }
+  RawTruncationPoint truncation_point() const { return {out_->size(), segment_start_, capacity_ - room_, acc_}; }
 
   // Pads the last byte (with zeros, or with 0101... for predictable termination so that a
   // decoder can check it) and makes sure the segment does not end on 0xFF.

@@ -61,8 +61,7 @@ class Midpoint {
 // still has its state from before the pass (significant iff its magnitude has a 1 above `plane`).
 class SignificanceScan {
  public:
-  SignificanceScan(std::span<const std::int32_t> c, std::span<float> out, int width, int height, int plane,
-                   bool causal)
+  SignificanceScan(std::span<const std::int32_t> c, std::span<float> out, int width, int height, int plane, bool causal)
       : c_(c), out_(out), w_(width), h_(height), plane_(plane), causal_(causal) {}
 
   // Whether (x, y) has a significant neighbour when the pass reaches it, so that the pass codes it.
@@ -87,7 +86,9 @@ class SignificanceScan {
   }
 
  private:
-  std::size_t at(int x, int y) const { return static_cast<std::size_t>(y) * static_cast<std::size_t>(w_) + static_cast<std::size_t>(x); }
+  std::size_t at(int x, int y) const {
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(w_) + static_cast<std::size_t>(x);
+  }
   bool passed(int x, int y) const { return out_[at(x, y)] != 0.0f; }
   bool before(int x, int y) const { return (magnitude_of(c_[at(x, y)]) >> (plane_ + 1)) != 0; }
 
@@ -141,7 +142,8 @@ void reconstruct(std::span<const std::int32_t> coefficients, int width, int heig
     const int y_end = std::min(y0 + 4, height);
     for (int x = 0; x < width; ++x)
       for (int y = y0; y < y_end; ++y) {
-        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+        const std::size_t i =
+            static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
         const std::int32_t c = coefficients[i];
         const std::uint32_t high = magnitude_of(c) >> plane;
         float r = 0.0f;

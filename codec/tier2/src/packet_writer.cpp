@@ -116,8 +116,7 @@ std::size_t PrecinctPacketWriter::write_packet(int layer, bool sop, bool eph, st
       const PrecinctBand& band = bands_[b];
       for (int y = 0; y < band.rows; ++y)
         for (int x = 0; x < band.cols; ++x)
-          write_block_header(band.blocks[static_cast<std::size_t>(y) * band.cols + x], state_[b], x, y, layer,
-                             header);
+          write_block_header(band.blocks[static_cast<std::size_t>(y) * band.cols + x], state_[b], x, y, layer, header);
     }
   }
   header.flush();
@@ -157,9 +156,8 @@ void PrecinctPacketWriter::write_block_header(const CodeBlockCoding& plan, BandS
   // piece)) bits. Lblock grows (k ones then a zero raise it by k) to the least value that fits
   // every piece of this packet.
   const auto& passes = plan.encoded->passes;
-  const std::vector<SegmentPiece> pieces =
-      split_into_segments(style_, first_pass, added, [&](int pass) { return passes[static_cast<std::size_t>(pass)].length; },
-                          coder_);
+  const std::vector<SegmentPiece> pieces = split_into_segments(
+      style_, first_pass, added, [&](int pass) { return passes[static_cast<std::size_t>(pass)].length; }, coder_);
   int lblock = st.lblock;
   for (const SegmentPiece& p : pieces)
     lblock = std::max(lblock, static_cast<int>(std::bit_width(p.bytes)) - floor_log2(p.passes));

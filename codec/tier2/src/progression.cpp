@@ -155,15 +155,23 @@ std::vector<PacketId> progression(Order order, int layers, std::int64_t tile_x0,
       break;
     case Order::RPCL:  // B.12.1.3: r, y, x, c, l
       for (int r = 0; r < max_res; ++r) {
-        walk.positions([&](auto f) { for (int c = 0; c < ncomp; ++c) f(c, r); }, tile_x1, tile_y1, xs, ys);
+        walk.positions(
+            [&](auto f) {
+              for (int c = 0; c < ncomp; ++c) f(c, r);
+            },
+            tile_x1, tile_y1, xs, ys);
         for (std::int64_t y : ys)
           for (std::int64_t x : xs)
             for (int c = 0; c < ncomp; ++c) walk.visit(c, r, x, y);
       }
       break;
     case Order::PCRL:  // B.12.1.4: y, x, c, r, l
-      walk.positions([&](auto f) { for (int c = 0; c < ncomp; ++c) for (int r = 0; r < levels(c); ++r) f(c, r); },
-                     tile_x1, tile_y1, xs, ys);
+      walk.positions(
+          [&](auto f) {
+            for (int c = 0; c < ncomp; ++c)
+              for (int r = 0; r < levels(c); ++r) f(c, r);
+          },
+          tile_x1, tile_y1, xs, ys);
       for (std::int64_t y : ys)
         for (std::int64_t x : xs)
           for (int c = 0; c < ncomp; ++c)
@@ -171,7 +179,11 @@ std::vector<PacketId> progression(Order order, int layers, std::int64_t tile_x0,
       break;
     case Order::CPRL:  // B.12.1.5: c, y, x, r, l
       for (int c = 0; c < ncomp; ++c) {
-        walk.positions([&](auto f) { for (int r = 0; r < levels(c); ++r) f(c, r); }, tile_x1, tile_y1, xs, ys);
+        walk.positions(
+            [&](auto f) {
+              for (int r = 0; r < levels(c); ++r) f(c, r);
+            },
+            tile_x1, tile_y1, xs, ys);
         for (std::int64_t y : ys)
           for (std::int64_t x : xs)
             for (int r = 0; r < levels(c); ++r) walk.visit(c, r, x, y);

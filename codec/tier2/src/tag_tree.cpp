@@ -6,8 +6,7 @@
 
 namespace codec::t2 {
 
-TagTreeEncoder::TagTreeEncoder(int width, int height, std::vector<int> leaf_values)
-    : width_(width), height_(height) {
+TagTreeEncoder::TagTreeEncoder(int width, int height, std::vector<int> leaf_values) : width_(width), height_(height) {
   if (width < 0 || height < 0) throw std::invalid_argument("TagTreeEncoder: negative size");
   if (leaf_values.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
     throw std::invalid_argument("TagTreeEncoder: leaf count does not match width*height");
@@ -75,7 +74,8 @@ void TagTreeEncoder::encode(int x, int y, int threshold, HeaderBitWriter& out) {
 
 void TagTreeEncoder::encode_value(int x, int y, HeaderBitWriter& out) {
   const int v = value(x, y);
-  if (v == std::numeric_limits<int>::max()) throw std::invalid_argument("TagTreeEncoder: value too large to code completely");
+  if (v == std::numeric_limits<int>::max())
+    throw std::invalid_argument("TagTreeEncoder: value too large to code completely");
   encode(x, y, v + 1, out);
 }
 

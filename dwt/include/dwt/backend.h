@@ -11,11 +11,11 @@ namespace dwt {
 // 4.1 columns), measured with the device idle before each clock read so that its work is charged to
 // the stage that issued it.
 struct DeviceTimings {
-  double context_ms = 0;  // creating the device context (only the first transform of a backend pays it)
-  double compile_ms = 0;  // compiling and linking its programs (likewise once)
-  double upload_ms = 0;   // buffers, tables and the plane to the device
-  double compute_ms = 0;  // the transform itself
-  double download_ms = 0; // reading the plane back
+  double context_ms = 0;   // creating the device context (only the first transform of a backend pays it)
+  double compile_ms = 0;   // compiling and linking its programs (likewise once)
+  double upload_ms = 0;    // buffers, tables and the plane to the device
+  double compute_ms = 0;   // the transform itself
+  double download_ms = 0;  // reading the plane back
   double total_ms() const { return context_ms + compile_ms + upload_ms + compute_ms + download_ms; }
 };
 

@@ -39,10 +39,14 @@ inline float apply_rule(const BandOperation& op, float a, float b) {
   const float fa = op.first_factor * a;
   const float fb = op.second_factor * b;
   switch (op.rule) {
-    case BandRule::First: return fa;
-    case BandRule::Second: return fb;
-    case BandRule::Sum: return fa + fb;
-    case BandRule::LargerMagnitude: return (fb < 0 ? -fb : fb) > (fa < 0 ? -fa : fa) ? fb : fa;
+    case BandRule::First:
+      return fa;
+    case BandRule::Second:
+      return fb;
+    case BandRule::Sum:
+      return fa + fb;
+    case BandRule::LargerMagnitude:
+      return (fb < 0 ? -fb : fb) > (fa < 0 ? -fa : fa) ? fb : fa;
   }
   return fa;
 }

@@ -46,7 +46,6 @@ struct AddressTable {
   static int row_of(int level_index, bool vertical) { return 2 * level_index + (vertical ? 1 : 0); }
 };
 
-AddressTable build_table(const std::vector<dwt::LevelGeometry>& levels, int pad, dwt::Boundary boundary,
-                         bool inverse);
+AddressTable build_table(const std::vector<dwt::LevelGeometry>& levels, int pad, dwt::Boundary boundary, bool inverse);
 
 }  // namespace dwt_gpu

@@ -32,8 +32,7 @@ class GlObject {
 
   GlObject(const GlObject&) = delete;
   GlObject& operator=(const GlObject&) = delete;
-  GlObject(GlObject&& other) noexcept
-      : gl_(std::exchange(other.gl_, nullptr)), id_(std::exchange(other.id_, 0)) {}
+  GlObject(GlObject&& other) noexcept : gl_(std::exchange(other.gl_, nullptr)), id_(std::exchange(other.id_, 0)) {}
   GlObject& operator=(GlObject&& other) noexcept {
     if (this != &other) {
       reset();
@@ -70,8 +69,7 @@ class Shader : public detail::GlObject<&detail::delete_shader> {
   // Compiles one stage (GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, ...). On
   // failure throws GlError "shader '<label>' (<stage>) failed to compile:"
   // followed by the driver's full info log.
-  static Shader compile(const GlApi& gl, GLenum stage, std::string_view source,
-                        std::string_view label);
+  static Shader compile(const GlApi& gl, GLenum stage, std::string_view source, std::string_view label);
 
  private:
   using GlObject::GlObject;
@@ -82,12 +80,12 @@ class Program : public detail::GlObject<&detail::delete_program> {
   Program() = default;
   // Compiles both stages and links them. Compile or link failures throw
   // GlError carrying `label` and the driver's full info log.
-  static Program link(const GlApi& gl, std::string_view vertex_src,
-                      std::string_view fragment_src, std::string_view label);
+  static Program link(const GlApi& gl, std::string_view vertex_src, std::string_view fragment_src,
+                      std::string_view label);
   // A vertex shader alone whose outputs `varyings` are captured by transform feedback, interleaved
   // in that order into one buffer (GL_INTERLEAVED_ATTRIBS); draw with GL_RASTERIZER_DISCARD.
-  static Program link_capture(const GlApi& gl, std::string_view vertex_src,
-                              std::span<const char* const> varyings, std::string_view label);
+  static Program link_capture(const GlApi& gl, std::string_view vertex_src, std::span<const char* const> varyings,
+                              std::string_view label);
 
   // glGetUniformLocation; -1 when the uniform does not exist or was
   // optimized away (not an error, GL ignores glUniform* on -1).
@@ -110,8 +108,8 @@ class Texture : public detail::GlObject<&detail::delete_texture> {
   // `data` may be null (uninitialized storage); otherwise rows are tightly
   // packed (no row padding, whatever the format), first row = bottom (y=0).
   // Leaves the texture bound to GL_TEXTURE_2D on the active texture unit.
-  static Texture create_2d(const GlApi& gl, int width, int height, GLenum internal_format,
-                           GLenum format, GLenum type, const void* data);
+  static Texture create_2d(const GlApi& gl, int width, int height, GLenum internal_format, GLenum format, GLenum type,
+                           const void* data);
 
   int width() const noexcept { return width_; }
   int height() const noexcept { return height_; }

@@ -38,7 +38,7 @@ enum class Layout {
 enum class DwtDevice {
   Auto,  // a hardware GPU where it is faster for the image size, never a software renderer
   Cpu,
-  Gpu,   // fails if no GL context can be made
+  Gpu,  // fails if no GL context can be made
 };
 
 // Worker threads and, where the DWT runs on the GPU, a GL context, that several encodes share as

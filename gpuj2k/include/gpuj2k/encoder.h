@@ -33,10 +33,10 @@ struct ImageView {
   const void* data = nullptr;
   std::size_t size_bytes = 0;  // length of the buffer at `data`
   int width = 0, height = 0;
-  int components = 1;          // 1..16384
+  int components = 1;  // 1..16384
   SampleType type = SampleType::UInt8;
-  int bits = 0;                // significant bits per sample, at most 16; 0: 8 for UInt8, 16 otherwise
-  bool is_signed = false;      // Int32 only (UInt8/UInt16 are unsigned, Int16 is signed)
+  int bits = 0;            // significant bits per sample, at most 16; 0: 8 for UInt8, 16 otherwise
+  bool is_signed = false;  // Int32 only (UInt8/UInt16 are unsigned, Int16 is signed)
   Layout layout = Layout::Interleaved;
   std::size_t row_stride = 0;    // bytes from one row to the next (of one plane when planar); 0: tight
   std::size_t plane_stride = 0;  // planar: bytes from one plane to the next; 0: height * row stride
@@ -49,8 +49,8 @@ enum class Progression { LRCP, RLCP, RPCL, PCRL, CPRL };
 
 // Code-block mode switches (T.800 Table A.19).
 struct CodeBlockModes {
-  bool bypass = false;                   // raw coding of the lower bit-planes' first two passes
-  bool reset = false;                    // contexts reset after each pass
+  bool bypass = false;  // raw coding of the lower bit-planes' first two passes
+  bool reset = false;   // contexts reset after each pass
   bool terminate_each_pass = false;
   bool vertically_causal = false;
   bool predictable_termination = false;
@@ -63,28 +63,28 @@ struct EncodeOptions {
   bool lossless = false;
   // Lossy targets, at most one kind; one value per quality layer, increasing quality. None: one
   // layer of everything the quantisation keeps.
-  std::vector<double> rates_bpp;   // bits per pixel over all components
-  std::vector<double> ratios;      // compression ratios of the raw size (as opj_compress -r)
-  std::vector<double> psnr_db;     // PSNR over all components
-  double size_bytes = 0;           // one layer, the whole file at most this size
-  double base_step = 1.0 / 2048;   // lossy quantisation step, relative to the sample range
-  int levels = 5;                  // decomposition levels, 0..32
-  std::int64_t tile_width = 0, tile_height = 0;    // 0: one tile
-  std::int64_t tile_x0 = 0, tile_y0 = 0;           // tile grid origin on the reference grid
-  std::int64_t image_x0 = 0, image_y0 = 0;         // image origin on the reference grid
-  int codeblock_width = 64, codeblock_height = 64; // powers of two 4..1024, product <= 4096
-  std::vector<std::pair<int, int>> precincts;      // finest resolution first; empty: maximal
+  std::vector<double> rates_bpp;                    // bits per pixel over all components
+  std::vector<double> ratios;                       // compression ratios of the raw size (as opj_compress -r)
+  std::vector<double> psnr_db;                      // PSNR over all components
+  double size_bytes = 0;                            // one layer, the whole file at most this size
+  double base_step = 1.0 / 2048;                    // lossy quantisation step, relative to the sample range
+  int levels = 5;                                   // decomposition levels, 0..32
+  std::int64_t tile_width = 0, tile_height = 0;     // 0: one tile
+  std::int64_t tile_x0 = 0, tile_y0 = 0;            // tile grid origin on the reference grid
+  std::int64_t image_x0 = 0, image_y0 = 0;          // image origin on the reference grid
+  int codeblock_width = 64, codeblock_height = 64;  // powers of two 4..1024, product <= 4096
+  std::vector<std::pair<int, int>> precincts;       // finest resolution first; empty: maximal
   Progression progression = Progression::LRCP;
   bool sop = false, eph = false;
   CodeBlockModes modes;
-  int guard_bits = -1;             // -1: 2 lossless, 1 lossy
+  int guard_bits = -1;  // -1: 2 lossless, 1 lossy
   std::string comment = "Created by gpuj2k";
-  int threads = 0;                 // worker threads for this encode; 0: one per hardware thread
+  int threads = 0;  // worker threads for this encode; 0: one per hardware thread
   // Shared worker threads and GL context (common.h); `threads` is then the engine's. Null: this
   // encode makes its own.
   std::shared_ptr<Engine> engine;
   DwtDevice dwt = DwtDevice::Auto;
-  bool code_every_pass = false;    // with a target: no pass skipping (the same file, slower)
+  bool code_every_pass = false;  // with a target: no pass skipping (the same file, slower)
   // HTJ2K (Part 15): every code-block through the high-throughput block coder (one cleanup pass,
   // from the bit-plane rate control picks when there is a target; one quality layer only; no EBCOT
   // mode switches).
@@ -117,7 +117,7 @@ GPUJ2K_API std::vector<std::uint8_t> encode_file(const std::string& input_path, 
                                                  EncodeReport* report = nullptr);
 
 // The same, written to `output_path` atomically (no file at all on failure).
-GPUJ2K_API void encode_file(const std::string& input_path, const std::string& output_path,
-                            const EncodeOptions& options, EncodeReport* report = nullptr);
+GPUJ2K_API void encode_file(const std::string& input_path, const std::string& output_path, const EncodeOptions& options,
+                            EncodeReport* report = nullptr);
 
 }  // namespace gpuj2k

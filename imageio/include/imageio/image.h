@@ -58,7 +58,8 @@ struct PackedImage {
   std::shared_ptr<const void> storage;
 
   std::size_t row_bytes() const {
-    return static_cast<std::size_t>(width) * static_cast<std::size_t>(channels) * static_cast<std::size_t>(bytes_per_sample);
+    return static_cast<std::size_t>(width) * static_cast<std::size_t>(channels) *
+           static_cast<std::size_t>(bytes_per_sample);
   }
   // Samples x0 .. x0 + n - 1 of `channel` in row y, into out[0 .. n - 1] (unchecked).
   void unpack_row(int channel, int y, int x0, int n, std::int32_t* out) const;

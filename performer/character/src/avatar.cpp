@@ -47,7 +47,8 @@ bool moves(const MorphTarget& t, std::size_t v) {
 std::string joint_key(std::string_view name) {
   if (const std::size_t colon = name.rfind(':'); colon != std::string_view::npos) name.remove_prefix(colon + 1);
   std::string key(name);
-  std::transform(key.begin(), key.end(), key.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(key.begin(), key.end(), key.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return key;
 }
 
@@ -58,7 +59,8 @@ std::vector<int> parents_first(const std::vector<int>& parent) {
   std::vector<int> chain;
   for (std::size_t start = 0; start < parent.size(); ++start) {
     chain.clear();
-    for (int j = static_cast<int>(start); j >= 0 && !placed[static_cast<std::size_t>(j)]; j = parent[static_cast<std::size_t>(j)])
+    for (int j = static_cast<int>(start); j >= 0 && !placed[static_cast<std::size_t>(j)];
+         j = parent[static_cast<std::size_t>(j)])
       chain.push_back(j);
     for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
       placed[static_cast<std::size_t>(*it)] = true;
@@ -118,7 +120,8 @@ Character avatar_character(const SkinnedMesh& skin, const FaceModel& face) {
   c.targets.reserve(face.targets.size());
   for (const MorphTarget& t : face.targets) {
     const auto from = static_cast<std::ptrdiff_t>(c.head_first);
-    c.targets.push_back({t.name, {t.position_deltas.begin() + from, t.position_deltas.end()},
+    c.targets.push_back({t.name,
+                         {t.position_deltas.begin() + from, t.position_deltas.end()},
                          {t.normal_deltas.begin() + from, t.normal_deltas.end()}});
   }
   if (const std::string problem = character_problem(c); !problem.empty())
@@ -226,14 +229,17 @@ AvatarExport character_avatar(const Character& c, const Skeleton& skeleton) {
     const Joint& joint = skeleton.joints[j];
     s.joints[j].name = joint.name;
     s.joints[j].parent = joint.parent;
-    const glm::vec3 parent_at = joint.parent < 0 ? glm::vec3(0.0f) : glm::vec3(rest[static_cast<std::size_t>(joint.parent)][3]);
+    const glm::vec3 parent_at =
+        joint.parent < 0 ? glm::vec3(0.0f) : glm::vec3(rest[static_cast<std::size_t>(joint.parent)][3]);
     s.joints[j].translation = glm::vec3(rest[j][3]) - parent_at;
   }
   const std::size_t n = c.vertex_count();
   for (const MorphTarget& t : c.targets) {
     MorphTarget whole{t.name, std::vector<glm::vec3>(n, glm::vec3(0.0f)), std::vector<glm::vec3>(n, glm::vec3(0.0f))};
-    std::copy(t.position_deltas.begin(), t.position_deltas.end(), whole.position_deltas.begin() + static_cast<std::ptrdiff_t>(c.head_first));
-    std::copy(t.normal_deltas.begin(), t.normal_deltas.end(), whole.normal_deltas.begin() + static_cast<std::ptrdiff_t>(c.head_first));
+    std::copy(t.position_deltas.begin(), t.position_deltas.end(),
+              whole.position_deltas.begin() + static_cast<std::ptrdiff_t>(c.head_first));
+    std::copy(t.normal_deltas.begin(), t.normal_deltas.end(),
+              whole.normal_deltas.begin() + static_cast<std::ptrdiff_t>(c.head_first));
     out.targets.push_back(std::move(whole));
   }
   return out;

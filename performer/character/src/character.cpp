@@ -65,8 +65,8 @@ Character build_character(const Skeleton& skeleton, const FaceModel& face, const
   validate_face_model(face, "build_character: face model");
   BodyMesh body = build_body_mesh(skeleton, params.body);
   if (body.attach_joint < 0)
-    throw std::invalid_argument("build_character: the skeleton has no joint named '" +
-                                params.body.shape.exclude_from + "' to place the head on");
+    throw std::invalid_argument("build_character: the skeleton has no joint named '" + params.body.shape.exclude_from +
+                                "' to place the head on");
   if (skeleton.joints[static_cast<std::size_t>(body.attach_joint)].end_site)
     throw std::invalid_argument("build_character: the head joint '" + params.body.shape.exclude_from +
                                 "' is an end site, which does not move");

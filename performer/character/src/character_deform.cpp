@@ -94,7 +94,7 @@ void deform_character_parallel(const CharacterDeformJob& job, unsigned threads) 
   // result.
   deform_face_parallel(face_job(job), threads);
   base::parallel_for(job.rest_positions.size(), kVerticesPerChunk, threads,
-               [&job](std::size_t begin, std::size_t end) { skin_range(job, begin, end); });
+                     [&job](std::size_t begin, std::size_t end) { skin_range(job, begin, end); });
 }
 
 CharacterFrame::CharacterFrame(const Character& character)

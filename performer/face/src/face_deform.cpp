@@ -64,8 +64,7 @@ void deform_range(const FaceDeformJob& job, std::size_t begin, std::size_t end) 
 
 void check(const FaceDeformJob& job) {
   if (!job.valid())
-    throw std::invalid_argument(
-        "deform_face: inconsistent job (stream sizes, target count or weight count disagree)");
+    throw std::invalid_argument("deform_face: inconsistent job (stream sizes, target count or weight count disagree)");
 }
 
 }  // namespace
@@ -91,7 +90,7 @@ void deform_face(const FaceDeformJob& job) {
 void deform_face_parallel(const FaceDeformJob& job, unsigned threads) {
   check(job);
   base::parallel_for(job.neutral_positions.size(), kVerticesPerChunk, threads,
-               [&job](std::size_t begin, std::size_t end) { deform_range(job, begin, end); });
+                     [&job](std::size_t begin, std::size_t end) { deform_range(job, begin, end); });
 }
 
 FaceStreams::FaceStreams(const FaceModel& model) {

@@ -26,9 +26,10 @@ GltfAvatar load_gltf_avatar(const std::filesystem::path& path, const VisemeSet& 
   if (node < 0) {
     const auto face_mesh = std::find_if(model.meshes.begin(), model.meshes.end(), has_morph_targets);
     if (face_mesh == model.meshes.end())
-      throw GltfError(file, "no skinned mesh and no morph targets: an avatar needs a mesh bound to a skin "
-                            "(JOINTS_0, WEIGHTS_0 and a skin's joints) to follow the motion capture, or a face "
-                            "with morph targets to put on the generated body");
+      throw GltfError(file,
+                      "no skinned mesh and no morph targets: an avatar needs a mesh bound to a skin "
+                      "(JOINTS_0, WEIGHTS_0 and a skin's joints) to follow the motion capture, or a face "
+                      "with morph targets to put on the generated body");
     GltfFace face = detail::read_gltf_face(model, static_cast<std::size_t>(face_mesh - model.meshes.begin()), set,
                                            mapping, {}, file);
     out.face = std::move(face.model);

@@ -85,10 +85,11 @@ std::vector<std::uint32_t> triangle_corners(const tinygltf::Model& model, const 
                                             std::size_t vertices, const std::string& file, const std::string& what) {
   std::vector<std::uint32_t> order;
   if (prim.indices >= 0) {
-    const detail::AccessorValues a = detail::read_accessor(
-        model, prim.indices, TINYGLTF_TYPE_SCALAR,
-        {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
-        file, what + " indices");
+    const detail::AccessorValues a =
+        detail::read_accessor(model, prim.indices, TINYGLTF_TYPE_SCALAR,
+                              {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                               TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+                              file, what + " indices");
     order.reserve(a.count);
     for (const double v : a.values) {
       if (v >= static_cast<double>(vertices))
@@ -349,9 +350,11 @@ GltfFace read_gltf_face(const tinygltf::Model& model, std::size_t mesh_index, co
     return out;
   }
   if (!found_any)
-    throw GltfError(file, what + " has none of the morph targets the performer needs (visemes as viseme_* Oculus "
-                                 "names or our names, expressions and blink as ARKit blend shapes or our names); "
-                                 "missing: " + join(out.missing, 40) + "; the file has: " + join(names, 20));
+    throw GltfError(file, what +
+                              " has none of the morph targets the performer needs (visemes as viseme_* Oculus "
+                              "names or our names, expressions and blink as ARKit blend shapes or our names); "
+                              "missing: " +
+                              join(out.missing, 40) + "; the file has: " + join(names, 20));
   if (options.require_all && !out.missing.empty())
     throw GltfError(file, what + " lacks morph targets for: " + join(out.missing, 40));
   validate_face_model(out.model, file);

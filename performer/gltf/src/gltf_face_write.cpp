@@ -65,7 +65,8 @@ class GltfBuilder {
 
 bool is_glb(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext == ".glb";
 }
 
@@ -86,7 +87,8 @@ void write_gltf_face(const std::filesystem::path& path, const FaceModel& face) {
   prim.indices = build.indices(face.indices);
   tinygltf::Value::Array names;
   for (const MorphTarget& t : face.targets) {
-    prim.targets.push_back({{"POSITION", build.vec3(t.position_deltas, true)}, {"NORMAL", build.vec3(t.normal_deltas, false)}});
+    prim.targets.push_back(
+        {{"POSITION", build.vec3(t.position_deltas, true)}, {"NORMAL", build.vec3(t.normal_deltas, false)}});
     names.emplace_back(t.name);
   }
   tinygltf::Mesh mesh;
@@ -116,7 +118,8 @@ void write_gltf_face(const std::filesystem::path& path, const FaceModel& face) {
   if (!writer.WriteGltfSceneToStream(&model, bytes, !binary, binary))
     throw GltfError(file, "tinygltf could not serialise the face");
   const std::string data = bytes.str();
-  detail::write_file_atomically(path, [&data](std::ostream& out) { out.write(data.data(), static_cast<std::streamsize>(data.size())); });
+  detail::write_file_atomically(
+      path, [&data](std::ostream& out) { out.write(data.data(), static_cast<std::streamsize>(data.size())); });
 }
 
 }  // namespace performer

@@ -11,7 +11,6 @@ namespace performer::detail {
 
 namespace {
 
-
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
   return true;
 }
@@ -33,7 +32,9 @@ tinygltf::Model load_gltf_model(const std::filesystem::path& path) {
   std::string err, warn;
   const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file)
                          : loader.LoadASCIIFromFile(&model, &err, &warn, file);
-  if (!ok) throw GltfError(file, "not a readable glTF 2.0 file: " + (err.empty() ? std::string("unknown error") : base::one_line(err)));
+  if (!ok)
+    throw GltfError(
+        file, "not a readable glTF 2.0 file: " + (err.empty() ? std::string("unknown error") : base::one_line(err)));
   return model;
 }
 

@@ -18,7 +18,6 @@ namespace performer {
 
 namespace {
 
-
 int add_accessor(tinygltf::Model& model, int view, int component_type, int type, std::size_t count) {
   tinygltf::Accessor accessor;
   accessor.bufferView = view;
@@ -42,8 +41,8 @@ void set_bounds(tinygltf::Accessor& accessor, const std::vector<glm::vec3>& valu
 }
 
 int add_vec3_accessor(tinygltf::Model& model, const std::vector<glm::vec3>& values, bool bounds) {
-  const int view = detail::append_buffer_view(model, values.data(), values.size() * sizeof(glm::vec3),
-                                              TINYGLTF_TARGET_ARRAY_BUFFER);
+  const int view =
+      detail::append_buffer_view(model, values.data(), values.size() * sizeof(glm::vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
   const int accessor = add_accessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, values.size());
   if (bounds) set_bounds(model.accessors[static_cast<std::size_t>(accessor)], values);
   return accessor;
@@ -94,10 +93,10 @@ void write_gltf_skinned(const std::filesystem::path& path, const SkinnedMesh& sk
         set_joints[v * 4 + k] = skinned.joint_indices[v * slots + set * 4 + k];
         set_weights[v * 4 + k] = skinned.joint_weights[v * slots + set * 4 + k];
       }
-    const int joint_view =
-        detail::append_buffer_view(model, set_joints.data(), set_joints.size() * sizeof(std::uint16_t), TINYGLTF_TARGET_ARRAY_BUFFER);
-    const int weight_view =
-        detail::append_buffer_view(model, set_weights.data(), set_weights.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+    const int joint_view = detail::append_buffer_view(
+        model, set_joints.data(), set_joints.size() * sizeof(std::uint16_t), TINYGLTF_TARGET_ARRAY_BUFFER);
+    const int weight_view = detail::append_buffer_view(model, set_weights.data(), set_weights.size() * sizeof(float),
+                                                       TINYGLTF_TARGET_ARRAY_BUFFER);
     primitive.attributes["JOINTS_" + std::to_string(set)] =
         add_accessor(model, joint_view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, vertices);
     primitive.attributes["WEIGHTS_" + std::to_string(set)] =
@@ -105,7 +104,7 @@ void write_gltf_skinned(const std::filesystem::path& path, const SkinnedMesh& sk
   }
   {
     const int view = detail::append_buffer_view(model, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t),
-                              TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+                                                TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
     primitive.indices =
         add_accessor(model, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, mesh.indices.size());
   }

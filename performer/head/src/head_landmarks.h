@@ -43,8 +43,8 @@ struct HeadLandmarks {
   // Mouth line and lips.
   float mouth_y = -0.012f;
   float mouth_half_width = 0.025f;
-  float mouth_depth = 0.022f;  // how far the lips' inner surfaces reach into the head
-  float slit_step = 0.0025f;   // angle (radians) between the mouth-line rows
+  float mouth_depth = 0.022f;                  // how far the lips' inner surfaces reach into the head
+  float slit_step = 0.0025f;                   // angle (radians) between the mouth-line rows
   glm::vec3 jaw_hinge{0.0f, 0.030f, -0.012f};  // the jaw rotates about the x axis through this point
 };
 

@@ -146,8 +146,8 @@ glm::vec3 base_head_point(const HeadLandmarks& m, const HeadVertexParam& p) {
   r = smooth_max(r, neck_extent(m, d), 0.02f);
   glm::vec3 point = m.centre + r * d;
   // Ears: a radial bump on each side, just behind the jaw hinge.
-  const float ear =
-      gauss((point.y - 0.032f) / 0.02f) * gauss((point.z + 0.012f) / 0.011f) * smoothstep(0.05f, 0.065f, std::abs(point.x));
+  const float ear = gauss((point.y - 0.032f) / 0.02f) * gauss((point.z + 0.012f) / 0.011f) *
+                    smoothstep(0.05f, 0.065f, std::abs(point.x));
   return point + 0.010f * ear * d;
 }
 
@@ -161,7 +161,8 @@ void align_rows_to_eyelids(const HeadLandmarks& m, const HeadGrid& grid, std::sp
       const glm::vec3& p = base[grid.vertex(r, c)];
       const EyeCoords e = eye_coords(m, p.x, p.y);
       v[r] = e.v;
-      if (p.z > 0.03f && std::abs(e.u) < 0.97f && e.v < upper_lid_edge(e.u) + 1.6f && e.v > lower_lid_edge(e.u) - 1.2f) {
+      if (p.z > 0.03f && std::abs(e.u) < 0.97f && e.v < upper_lid_edge(e.u) + 1.6f &&
+          e.v > lower_lid_edge(e.u) - 1.2f) {
         first = std::min(first, r);
         last = std::max(last, r);
       }

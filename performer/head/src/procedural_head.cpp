@@ -48,7 +48,8 @@ MorphTarget make_target(std::string name, const detail::FacePose& pose, const de
 FaceModel build_procedural_head(const VisemeSet& set, const HeadParams& params) {
   check_params(params);
   const detail::HeadLandmarks marks;
-  const detail::HeadGrid grid = detail::make_head_grid(marks, params.rings, params.segments, params.mouth_rows, params.focus);
+  const detail::HeadGrid grid =
+      detail::make_head_grid(marks, params.rings, params.segments, params.mouth_rows, params.focus);
   const std::vector<detail::HeadVertexParam> vertex_params = grid.vertex_params();
 
   FaceModel model;
@@ -71,11 +72,13 @@ FaceModel build_procedural_head(const VisemeSet& set, const HeadParams& params) 
   std::vector<std::pair<std::string, detail::FacePose>> poses;
   for (const VisemeInfo& v : set.visemes) {
     const auto pose = detail::viseme_pose(v.name, v.oculus);
-    if (!pose) throw std::invalid_argument("procedural head: no shape for viseme '" + v.name + "' (Oculus '" + v.oculus + "')");
+    if (!pose)
+      throw std::invalid_argument("procedural head: no shape for viseme '" + v.name + "' (Oculus '" + v.oculus + "')");
     poses.emplace_back(v.name, *pose);
   }
   for (const std::string_view e : kHeadExpressions) {
-    if (set.find(e) >= 0) throw std::invalid_argument("procedural head: viseme named like the expression '" + std::string(e) + "'");
+    if (set.find(e) >= 0)
+      throw std::invalid_argument("procedural head: viseme named like the expression '" + std::string(e) + "'");
     poses.emplace_back(std::string(e), *detail::expression_pose(e));
   }
 
@@ -83,7 +86,8 @@ FaceModel build_procedural_head(const VisemeSet& set, const HeadParams& params) 
   // Targets are independent of each other: one per task.
   base::parallel_for(poses.size(), 1, 0, [&](std::size_t begin, std::size_t end) {
     for (std::size_t t = begin; t < end; ++t)
-      model.targets[t] = make_target(poses[t].first, poses[t].second, marks, grid, vertex_params, model, params.mouth_rows);
+      model.targets[t] =
+          make_target(poses[t].first, poses[t].second, marks, grid, vertex_params, model, params.mouth_rows);
   });
 
   if (params.scale != 1.0f) {

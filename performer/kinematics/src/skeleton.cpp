@@ -6,12 +6,18 @@ namespace performer {
 
 std::string_view channel_name(Channel channel) {
   switch (channel) {
-    case Channel::Xposition: return "Xposition";
-    case Channel::Yposition: return "Yposition";
-    case Channel::Zposition: return "Zposition";
-    case Channel::Xrotation: return "Xrotation";
-    case Channel::Yrotation: return "Yrotation";
-    case Channel::Zrotation: return "Zrotation";
+    case Channel::Xposition:
+      return "Xposition";
+    case Channel::Yposition:
+      return "Yposition";
+    case Channel::Zposition:
+      return "Zposition";
+    case Channel::Xrotation:
+      return "Xrotation";
+    case Channel::Yrotation:
+      return "Yrotation";
+    case Channel::Zrotation:
+      return "Zrotation";
   }
   return "?";
 }

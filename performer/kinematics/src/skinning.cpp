@@ -93,7 +93,7 @@ void skin(const SkinningJob& job) {
 void skin_parallel(const SkinningJob& job, unsigned threads) {
   if (!job.valid()) throw std::invalid_argument("skin: inconsistent job (stream sizes or a joint index out of range)");
   base::parallel_for(job.in_positions.size(), kVerticesPerChunk, threads,
-               [&job](std::size_t begin, std::size_t end) { skin_range(job, begin, end); });
+                     [&job](std::size_t begin, std::size_t end) { skin_range(job, begin, end); });
 }
 
 }  // namespace performer

@@ -19,7 +19,8 @@ void check_mesh(const std::filesystem::path& path, const MeshView& mesh) {
   const std::size_t n = mesh.positions.size();
   if (!mesh.normals.empty() && mesh.normals.size() != n)
     fail(std::to_string(n) + " positions but " + std::to_string(mesh.normals.size()) + " normals");
-  if (mesh.indices.size() % 3 != 0) fail("index count " + std::to_string(mesh.indices.size()) + " is not a multiple of 3");
+  if (mesh.indices.size() % 3 != 0)
+    fail("index count " + std::to_string(mesh.indices.size()) + " is not a multiple of 3");
   for (const std::uint32_t i : mesh.indices)
     if (i >= n) fail("triangle index " + std::to_string(i) + " past the " + std::to_string(n) + " vertices");
 }
@@ -106,8 +107,8 @@ void write_obj(const std::filesystem::path& path, const MeshView& mesh) {
     }
     text += '\n';
   }
-  detail::write_file_atomically(path,
-                                [&](std::ostream& out) { out.write(text.data(), static_cast<std::streamsize>(text.size())); });
+  detail::write_file_atomically(
+      path, [&](std::ostream& out) { out.write(text.data(), static_cast<std::streamsize>(text.size())); });
 }
 
 }  // namespace performer

@@ -44,8 +44,7 @@ void point_base_attributes(const glc::GlApi& gl, const glc::Buffer& rest, const 
 
 }  // namespace
 
-GpuDeformer::GpuDeformer(glc::Context& context, const Character& character, BoneStorage storage)
-    : context_(&context) {
+GpuDeformer::GpuDeformer(glc::Context& context, const Character& character, BoneStorage storage) : context_(&context) {
   const std::string problem = character_problem(character);
   if (!problem.empty()) throw std::invalid_argument("GpuDeformer: the character is not valid: " + problem);
   if (character.influences > 4)
@@ -63,12 +62,12 @@ GpuDeformer::GpuDeformer(glc::Context& context, const Character& character, Bone
   gl.glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &max_block);
   const bool fits = joint_count_ * sizeof(glm::mat4) <= static_cast<std::size_t>(max_block);
   if (storage == BoneStorage::uniform_block && !fits)
-    throw std::invalid_argument("GpuDeformer: " + std::to_string(joint_count_) + " joints do not fit a uniform block of " +
-                                std::to_string(max_block) + " bytes");
+    throw std::invalid_argument("GpuDeformer: " + std::to_string(joint_count_) +
+                                " joints do not fit a uniform block of " + std::to_string(max_block) + " bytes");
   bones_in_texture_ = storage == BoneStorage::buffer_texture || (storage == BoneStorage::automatic && !fits);
   static constexpr std::array<const char*, 2> kVaryings = {"v_position", "v_normal"};
   program_ = glc::Program::link_capture(gl, deform_vertex_shader(joint_count_, bones_in_texture_, kFaceSlots),
-                                       kVaryings, "equation 3.20");
+                                        kVaryings, "equation 3.20");
   face_weights_location_ = program_.uniform("u_face_weights");
   face_acting_location_ = program_.uniform("u_face_acting");
   program_.use();
@@ -111,8 +110,8 @@ GpuDeformer::GpuDeformer(glc::Context& context, const Character& character, Bone
     gl.glBindTexture(GL_TEXTURE_BUFFER, bone_texture_.id());
     gl.glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, bones_.id());
   }
-  output_ = glc::Buffer::create(gl, GL_TRANSFORM_FEEDBACK_BUFFER, std::max<std::size_t>(vertex_count_, 1) * kOutputStride,
-                                nullptr, GL_DYNAMIC_COPY);
+  output_ = glc::Buffer::create(gl, GL_TRANSFORM_FEEDBACK_BUFFER,
+                                std::max<std::size_t>(vertex_count_, 1) * kOutputStride, nullptr, GL_DYNAMIC_COPY);
 
   target_texture_ = glc::Texture::create_2d(gl, 1, 1, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
   target_ = glc::Framebuffer::create(gl);
@@ -131,8 +130,8 @@ GpuDeformer::GpuDeformer(glc::Context& context, const Character& character, Bone
 
 void GpuDeformer::deform(std::span<const float> face_weights, std::span<const glm::mat4> matrices) {
   if (face_weights.size() != target_count_)
-    throw std::invalid_argument("GpuDeformer::deform: " + std::to_string(face_weights.size()) +
-                                " face weights for " + std::to_string(target_count_) + " targets");
+    throw std::invalid_argument("GpuDeformer::deform: " + std::to_string(face_weights.size()) + " face weights for " +
+                                std::to_string(target_count_) + " targets");
   if (matrices.size() != joint_count_)
     throw std::invalid_argument("GpuDeformer::deform: " + std::to_string(matrices.size()) + " matrices for " +
                                 std::to_string(joint_count_) + " joints");
@@ -224,15 +223,16 @@ void GpuDeformer::upload(std::span<const glm::vec3> positions, std::span<const g
   }
   const glc::GlApi& gl = context_->gl();
   gl.glBindBuffer(GL_ARRAY_BUFFER, output_.id());
-  gl.glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(interleaved.size() * sizeof(float)), interleaved.data());
+  gl.glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(interleaved.size() * sizeof(float)),
+                     interleaved.data());
   glc::check(gl, "GpuDeformer::upload");
 }
 
 void GpuDeformer::read_back(std::span<glm::vec3> positions, std::span<glm::vec3> normals) const {
   if (positions.size() != vertex_count_ || normals.size() != vertex_count_)
-    throw std::invalid_argument("GpuDeformer::read_back: room for " + std::to_string(positions.size()) + " positions and " +
-                                std::to_string(normals.size()) + " normals, " + std::to_string(vertex_count_) +
-                                " vertices");
+    throw std::invalid_argument("GpuDeformer::read_back: room for " + std::to_string(positions.size()) +
+                                " positions and " + std::to_string(normals.size()) + " normals, " +
+                                std::to_string(vertex_count_) + " vertices");
   const glc::GlApi& gl = context_->gl();
   std::vector<float> out(vertex_count_ * 6);
   gl.glBindBuffer(GL_COPY_READ_BUFFER, output_.id());

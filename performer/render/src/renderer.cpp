@@ -40,8 +40,8 @@ glc::Texture load_cubemap(const glc::GlApi& gl, const std::filesystem::path& dir
       }
     }
     if (file.empty())
-      throw std::invalid_argument("cube map: no " + std::string(kFaces[static_cast<std::size_t>(f)]) + ".jpg or .png in " +
-                                  dir.string());
+      throw std::invalid_argument("cube map: no " + std::string(kFaces[static_cast<std::size_t>(f)]) +
+                                  ".jpg or .png in " + dir.string());
     const imageio::Image image = imageio::read_image(file.string());
     if (image.width != image.height || image.channels < 3)
       throw std::invalid_argument("cube map face " + file.string() + ": expected a square RGB image, got " +
@@ -56,7 +56,9 @@ glc::Texture load_cubemap(const glc::GlApi& gl, const std::filesystem::path& dir
       for (int x = 0; x < image.width; ++x)
         for (int c = 0; c < 3; ++c)
           rgb[(static_cast<std::size_t>(image.height - 1 - y) * static_cast<std::size_t>(image.width) +
-               static_cast<std::size_t>(x)) * 3 + static_cast<std::size_t>(c)] =
+               static_cast<std::size_t>(x)) *
+                  3 +
+              static_cast<std::size_t>(c)] =
               static_cast<std::uint8_t>(std::clamp(image.at(x, y, c) * scale + 0.5f, 0.0f, 255.0f));
     gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     gl.glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + static_cast<GLenum>(f), 0, GL_RGB8, image.width, image.height, 0,
@@ -101,8 +103,8 @@ std::vector<glm::vec4> hair_attributes(const Character& c) {
 Renderer::Renderer(glc::Context& context, const Character& character, const RenderSettings& settings)
     : context_(&context), character_(&character), settings_(settings) {
   if (settings.width < 16 || settings.height < 16 || settings.width > 8192 || settings.height > 8192)
-    throw std::invalid_argument("render size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
-                                " outside 16x16..8192x8192");
+    throw std::invalid_argument("render size " + std::to_string(settings.width) + "x" +
+                                std::to_string(settings.height) + " outside 16x16..8192x8192");
   const glc::GlApi& gl = context.gl();
   color_ = glc::Renderbuffer::create(gl, settings.width, settings.height, GL_RGBA8, settings.samples);
   depth_ = glc::Renderbuffer::create(gl, settings.width, settings.height, GL_DEPTH_COMPONENT24, settings.samples);
@@ -125,7 +127,8 @@ Renderer::Renderer(glc::Context& context, const Character& character, const Rend
   indices_ = glc::Buffer::create(gl, GL_ELEMENT_ARRAY_BUFFER, indices.size() * sizeof(std::uint32_t), indices.data(),
                                  GL_STATIC_DRAW);
   const std::vector<glm::vec4> hair = hair_attributes(character);
-  hair_attributes_ = glc::Buffer::create(gl, GL_ARRAY_BUFFER, hair.size() * sizeof(glm::vec4), hair.data(), GL_STATIC_DRAW);
+  hair_attributes_ =
+      glc::Buffer::create(gl, GL_ARRAY_BUFFER, hair.size() * sizeof(glm::vec4), hair.data(), GL_STATIC_DRAW);
   // The shells are drawn over the scalp's triangles only (any corner with hair), kept in their own
   // index buffer: every shell re-draws them, and the rest of the head would only be discarded.
   std::vector<std::uint32_t> scalp;
@@ -140,8 +143,9 @@ Renderer::Renderer(glc::Context& context, const Character& character, const Rend
     head_hi = std::max(head_hi, character.mesh.positions[v].y);
   }
   hair_length_ = character.head_count > 0 ? 0.09f * (head_hi - head_lo) : 0.0f;
-  scalp_indices_ = glc::Buffer::create(gl, GL_ELEMENT_ARRAY_BUFFER, std::max<std::size_t>(scalp.size(), 1) * sizeof(std::uint32_t),
-                                       scalp.empty() ? nullptr : scalp.data(), GL_STATIC_DRAW);
+  scalp_indices_ =
+      glc::Buffer::create(gl, GL_ELEMENT_ARRAY_BUFFER, std::max<std::size_t>(scalp.size(), 1) * sizeof(std::uint32_t),
+                          scalp.empty() ? nullptr : scalp.data(), GL_STATIC_DRAW);
   character_vao_ = glc::VertexArray::create(gl);
   sky_vao_ = glc::VertexArray::create(gl);
   static constexpr std::array<float, 8> kCorners = {-1, -1, 1, -1, -1, 1, 1, 1};

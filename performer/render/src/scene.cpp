@@ -86,7 +86,8 @@ void Snow::step(float dt) {
   time_ += dt;
   // A slowly turning wind, and air drag pulling each flake's velocity towards it; small flakes
   // settle to a terminal fall of about a tenth of the box height per second.
-  const glm::vec3 wind(0.06f * height_ * std::sin(0.4f * time_), -0.12f * height_, 0.04f * height_ * std::cos(0.3f * time_));
+  const glm::vec3 wind(0.06f * height_ * std::sin(0.4f * time_), -0.12f * height_,
+                       0.04f * height_ * std::cos(0.3f * time_));
   const float drag = 1.6f;
   for (Flake& f : flakes_) {
     const glm::vec3 acceleration = drag * (wind - f.velocity);

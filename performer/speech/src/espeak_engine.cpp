@@ -32,9 +32,7 @@ std::string phoneme_name(const espeak_EVENT& event) {
   return std::string(event.id.string, strnlen(event.id.string, sizeof event.id.string));
 }
 
-bool is_language_switch(std::string_view name) {
-  return name.size() > 2 && name.front() == '(' && name.back() == ')';
-}
+bool is_language_switch(std::string_view name) { return name.size() > 2 && name.front() == '(' && name.back() == ')'; }
 
 void collect(EspeakAudio& out, const short* wav, int count, const espeak_EVENT* events) {
   if (wav && count > 0) out.samples.insert(out.samples.end(), wav, wav + count);
@@ -73,8 +71,7 @@ void start_locked() {
   // one. It repeats the initialisation just checked (so it cannot fail now, and prints nothing)
   // and calls espeak_ng_InitializeOutput(ENOUTPUT_MODE_SYNCHRONOUS): synthesis runs in the calling
   // thread and hands its audio to the callback, with no sound device opened.
-  espeak_Initialize(AUDIO_OUTPUT_SYNCHRONOUS, 0, nullptr,
-                    espeakINITIALIZE_PHONEME_EVENTS | espeakINITIALIZE_DONT_EXIT);
+  espeak_Initialize(AUDIO_OUTPUT_SYNCHRONOUS, 0, nullptr, espeakINITIALIZE_PHONEME_EVENTS | espeakINITIALIZE_DONT_EXIT);
   espeak_SetSynthCallback(&on_synth);
   started = true;
 }
@@ -119,8 +116,8 @@ EspeakAudio espeak_synthesize(const std::string& voice, const std::string& text)
     const CollectInto target(out);
     // Plain UTF-8 text: no SSML and no [[phoneme]] input, which would let text bypass the voice's
     // reading rules. The size argument is unused in synchronous mode; it is the buffer size.
-    espeak_ng_STATUS status = espeak_ng_Synthesize(text.c_str(), text.size() + 1, 0, POS_CHARACTER, 0,
-                                                   espeakCHARS_UTF8, nullptr, nullptr);
+    espeak_ng_STATUS status =
+        espeak_ng_Synthesize(text.c_str(), text.size() + 1, 0, POS_CHARACTER, 0, espeakCHARS_UTF8, nullptr, nullptr);
     if (status == ENS_OK) status = espeak_ng_Synchronize();
     if (callback_error) std::rethrow_exception(callback_error);
     if (status != ENS_OK) throw std::runtime_error("espeak-ng: synthesis failed (" + status_message(status) + ")");

@@ -43,8 +43,9 @@ void check_text(std::string_view text, const Language& language) {
     throw std::invalid_argument("speech text is not UTF-8 (malformed at byte " + std::to_string(*bad) + ")");
   if (language.ideographs_refused.empty()) return;
   if (const auto ideograph = detail::find_cjk_ideograph(text))
-    throw std::invalid_argument("speech language '" + std::string(language.name) + "' cannot read CJK ideographs such as '" +
-                                std::string(*ideograph) + "': " + std::string(language.ideographs_refused));
+    throw std::invalid_argument("speech language '" + std::string(language.name) +
+                                "' cannot read CJK ideographs such as '" + std::string(*ideograph) +
+                                "': " + std::string(language.ideographs_refused));
 }
 
 // espeak-ng's pause phonemes are all named "_..." ("_", "_:", "_|", "_!") or "||".
@@ -52,8 +53,8 @@ bool is_pause(std::string_view name) { return name.starts_with('_') || name == "
 
 // Text that is all punctuation comes back as a few pauses and a handful of silent samples.
 void check_spoken(const detail::EspeakAudio& audio, std::string_view language) {
-  const bool said_something = std::any_of(audio.marks.begin(), audio.marks.end(),
-                                          [](const PhonemeMark& m) { return !is_pause(m.name); });
+  const bool said_something =
+      std::any_of(audio.marks.begin(), audio.marks.end(), [](const PhonemeMark& m) { return !is_pause(m.name); });
   if (!said_something || audio.samples.empty())
     throw std::invalid_argument("espeak-ng voice '" + std::string(language) +
                                 "' found nothing to say in the text (only punctuation or blanks?)");

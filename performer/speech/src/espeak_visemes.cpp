@@ -91,9 +91,8 @@ EspeakVisemeMap parse_espeak_visemes(std::string_view text, std::string_view fil
       throw VisemeDataError(file, line.number,
                             "'" + std::string(mnemonic) + "' already mapped on line " + std::to_string(earlier->line));
     const std::span<const std::string_view> targets(fields.begin() + 2, fields.end());
-    std::vector<int> visemes = fields[1] == kDirectIds
-                                   ? direct_visemes(targets, library, file, line.number)
-                                   : table_visemes(fields[1], targets, library, file, line.number);
+    std::vector<int> visemes = fields[1] == kDirectIds ? direct_visemes(targets, library, file, line.number)
+                                                       : table_visemes(fields[1], targets, library, file, line.number);
     map.entries.push_back({std::string(mnemonic), std::move(visemes), line.number});
   }
   return map;

@@ -32,8 +32,8 @@ void put_u32(std::string& out, std::uint32_t value) {
 }
 
 std::uint16_t get_u16(std::string_view bytes, std::size_t pos) {
-  return static_cast<std::uint16_t>(static_cast<unsigned char>(bytes[pos]) |
-                                    static_cast<unsigned char>(bytes[pos + 1]) << 8);
+  return static_cast<std::uint16_t>(static_cast<unsigned char>(bytes[pos]) | static_cast<unsigned char>(bytes[pos + 1])
+                                                                                 << 8);
 }
 
 std::uint32_t get_u32(std::string_view bytes, std::size_t pos) {
@@ -103,7 +103,8 @@ std::vector<std::int16_t> read_samples(std::string_view body, const std::filesys
 }  // namespace
 
 void write_wav(const std::filesystem::path& file, int sample_rate, std::span<const std::int16_t> samples) {
-  if (sample_rate <= 0) throw std::invalid_argument("WAV sample rate " + std::to_string(sample_rate) + " is not positive");
+  if (sample_rate <= 0)
+    throw std::invalid_argument("WAV sample rate " + std::to_string(sample_rate) + " is not positive");
   if (samples.size() * 2 > kMaxDataBytes)
     throw std::invalid_argument("WAV cannot hold " + std::to_string(samples.size()) + " samples (32-bit sizes)");
   base::replace_file_atomically(file.string(), encode_wav(sample_rate, samples));

@@ -197,8 +197,8 @@ void VideoWriter::write_frame(std::span<const std::uint8_t> rgb) {
   if (s.finished) throw std::logic_error("VideoWriter: frame after finish()");
   const auto w = static_cast<std::size_t>(s.settings.width), h = static_cast<std::size_t>(s.settings.height);
   if (rgb.size() != w * h * 3)
-    throw std::invalid_argument("VideoWriter: " + std::to_string(rgb.size()) + " bytes for a " + std::to_string(w) + "x" +
-                                std::to_string(h) + " RGB frame");
+    throw std::invalid_argument("VideoWriter: " + std::to_string(rgb.size()) + " bytes for a " + std::to_string(w) +
+                                "x" + std::to_string(h) + " RGB frame");
   int r = av_frame_make_writable(s.picture.get());
   if (r < 0) s.fail("video frame", r);
   const std::uint8_t* source[1] = {rgb.data()};
@@ -207,8 +207,7 @@ void VideoWriter::write_frame(std::span<const std::uint8_t> rgb) {
   s.picture->pts = s.frames++;
   s.encode(s.video.get(), s.video_stream, s.picture.get());
   // The speech up to this frame's end.
-  if (s.sound)
-    s.send_audio(static_cast<std::size_t>(s.frames * s.sample_rate / s.settings.fps), false);
+  if (s.sound) s.send_audio(static_cast<std::size_t>(s.frames * s.sample_rate / s.settings.fps), false);
 }
 
 void VideoWriter::finish() {
@@ -224,7 +223,8 @@ void VideoWriter::finish() {
   avio_closep(&s.format->pb);
   std::error_code error;
   std::filesystem::rename(s.temporary, s.path, error);
-  if (error) throw std::runtime_error(s.path.string() + ": cannot move the finished video into place: " + error.message());
+  if (error)
+    throw std::runtime_error(s.path.string() + ": cannot move the finished video into place: " + error.message());
   s.finished = true;
 }
 

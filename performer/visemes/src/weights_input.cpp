@@ -72,12 +72,15 @@ WeightTrack parse_weights_csv(std::string_view text, std::string_view file_name,
     if (!split_csv(line, fields)) throw VisemeDataError(file, line_number, "unterminated quote");
     if (!header) {
       if (fields.front() != "time")
-        throw VisemeDataError(file, line_number, "the header's first column must be \"time\", not \"" + fields.front() + "\"");
+        throw VisemeDataError(file, line_number,
+                              "the header's first column must be \"time\", not \"" + fields.front() + "\"");
       if (fields.size() < 2) throw VisemeDataError(file, line_number, "the header names no weight channel");
       std::set<std::string> seen;
       for (std::size_t i = 1; i < fields.size(); ++i) {
-        if (fields[i].empty()) throw VisemeDataError(file, line_number, "channel " + std::to_string(i) + " has no name");
-        if (!seen.insert(fields[i]).second) throw VisemeDataError(file, line_number, "channel \"" + fields[i] + "\" appears twice");
+        if (fields[i].empty())
+          throw VisemeDataError(file, line_number, "channel " + std::to_string(i) + " has no name");
+        if (!seen.insert(fields[i]).second)
+          throw VisemeDataError(file, line_number, "channel \"" + fields[i] + "\" appears twice");
         track.channels.push_back(fields[i]);
       }
       while (track.viseme_channels < static_cast<int>(track.channels.size()) &&
@@ -87,19 +90,25 @@ WeightTrack parse_weights_csv(std::string_view text, std::string_view file_name,
       continue;
     }
     if (fields.size() != track.channels.size() + 1)
-      throw VisemeDataError(file, line_number, "expected " + std::to_string(track.channels.size() + 1) + " fields, found " +
-                                                   std::to_string(fields.size()));
+      throw VisemeDataError(
+          file, line_number,
+          "expected " + std::to_string(track.channels.size() + 1) + " fields, found " + std::to_string(fields.size()));
     double t = 0;
-    if (!parse_number(fields[0], t)) throw VisemeDataError(file, line_number, "time \"" + fields[0] + "\" is not a number");
+    if (!parse_number(fields[0], t))
+      throw VisemeDataError(file, line_number, "time \"" + fields[0] + "\" is not a number");
     if (!track.times.empty() && t <= track.times.back())
       throw VisemeDataError(file, line_number, "time " + fields[0] + " does not come after the previous row's");
     track.times.push_back(t);
     for (std::size_t i = 1; i < fields.size(); ++i) {
       double w = 0;
       if (!parse_number(fields[i], w))
-        throw VisemeDataError(file, line_number, "weight \"" + fields[i] + "\" of channel \"" + track.channels[i - 1] + "\" is not a number");
+        throw VisemeDataError(
+            file, line_number,
+            "weight \"" + fields[i] + "\" of channel \"" + track.channels[i - 1] + "\" is not a number");
       if (w < 0 || w > 1)
-        throw VisemeDataError(file, line_number, "weight " + fields[i] + " of channel \"" + track.channels[i - 1] + "\" is outside [0, 1]");
+        throw VisemeDataError(
+            file, line_number,
+            "weight " + fields[i] + " of channel \"" + track.channels[i - 1] + "\" is outside [0, 1]");
       track.values.push_back(static_cast<float>(w));
     }
   }
@@ -107,9 +116,10 @@ WeightTrack parse_weights_csv(std::string_view text, std::string_view file_name,
   if (track.times.empty()) throw VisemeDataError(file, 0, "no frames after the header");
   // Times are written to the microsecond, so the mean interval gives the rate to about 1e-5 over a
   // second of frames; rates are chosen in round numbers, so round to a thousandth of a frame.
-  track.fps = track.times.size() > 1
-                  ? std::round(1000.0 * static_cast<double>(track.times.size() - 1) / (track.times.back() - track.times.front())) / 1000.0
-                  : 30.0;
+  track.fps = track.times.size() > 1 ? std::round(1000.0 * static_cast<double>(track.times.size() - 1) /
+                                                  (track.times.back() - track.times.front())) /
+                                           1000.0
+                                     : 30.0;
   return track;
 }
 

@@ -22,11 +22,11 @@
 namespace wavelet_apps {
 
 struct BandSelector {
-  int channel = -1;                         // index into the channel names; -1: every channel
-  bool lowest = false;                      // the coarsest LL (then level/orientation are unused)
-  int level = 0;                            // 1..levels; 0: every level
+  int channel = -1;                             // index into the channel names; -1: every channel
+  bool lowest = false;                          // the coarsest LL (then level/orientation are unused)
+  int level = 0;                                // 1..levels; 0: every level
   std::optional<dwt::Orientation> orientation;  // HL, LH or HH; none: all three (and LL when `every_band`)
-  bool every_band = false;                  // "*": every band, LL included
+  bool every_band = false;                      // "*": every band, LL included
 
   bool matches(int channel_index, const dwt::BandId& band, int levels) const;
 };

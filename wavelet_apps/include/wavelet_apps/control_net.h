@@ -28,8 +28,8 @@ using Point3 = std::array<float, 3>;
 struct ControlNet {
   int rows = 0;
   int columns = 0;
-  bool wrap = false;    // column columns-1 joins column 0
-  bool capped = false;  // first and last rows closed by fans around their centroids
+  bool wrap = false;           // column columns-1 joins column 0
+  bool capped = false;         // first and last rows closed by fans around their centroids
   std::vector<Point3> points;  // rows * columns, row-major
 
   const Point3& at(int row, int column) const {

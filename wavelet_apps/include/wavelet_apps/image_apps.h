@@ -42,8 +42,8 @@ std::vector<RuleSpec> default_combine_rules(ColourSpace space, int channels);
 // and channel count (grey repeated, colour to luma, alpha dropped or made opaque), in the base's
 // sample range.
 imageio::Image fit_detail(const imageio::Image& detail, const imageio::Image& base, Fit fit);
-imageio::Image combine_images(const imageio::Image& base, const imageio::Image& detail,
-                              const CombineSettings& settings, WaveletEngine& engine);
+imageio::Image combine_images(const imageio::Image& base, const imageio::Image& detail, const CombineSettings& settings,
+                              WaveletEngine& engine);
 Planes combine_planes(const imageio::Image& base, const imageio::Image& detail, const CombineSettings& settings,
                       WaveletEngine& engine);
 

@@ -22,9 +22,7 @@ struct Planes {
   std::vector<std::vector<float>> planes;
 
   dwt::PlaneSpan<float> span(std::size_t c) { return dwt::make_span(planes[c].data(), width, height); }
-  dwt::PlaneSpan<const float> span(std::size_t c) const {
-    return {planes[c].data(), width, height, width};
-  }
+  dwt::PlaneSpan<const float> span(std::size_t c) const { return {planes[c].data(), width, height, width}; }
 };
 
 // The channel names an image of `channels` channels gets in `space` (1 to 4 channels; AppError else).

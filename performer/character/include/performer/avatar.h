@@ -39,15 +39,15 @@ Character avatar_character(const SkinnedMesh& skin, const FaceModel& face);
 
 // How an avatar's joints follow a BVH skeleton (see the top of this file).
 struct AvatarRetarget {
-  std::vector<int> skeleton_joint;      // per avatar joint: the BVH joint it follows, -1 for none
-  std::vector<int> parent;              // per avatar joint: its parent joint, -1 for a root
-  std::vector<int> order;               // avatar joints, parents before children
-  std::vector<bool> anchor;             // matched, with no matched ancestor: moves as its BVH joint
-  std::vector<glm::mat4> rest_world;    // per avatar joint: its world transform in the rest pose
-  std::vector<glm::vec3> skeleton_rest; // per avatar joint: its BVH joint's rest position (anchors)
-  float scale = 1.0f;                   // avatar units per BVH unit
-  std::vector<std::string> unmatched;   // avatar joints that follow no BVH joint, in joint order
-  int root = -1;                        // the first anchor: what a camera follows; -1 with no match
+  std::vector<int> skeleton_joint;       // per avatar joint: the BVH joint it follows, -1 for none
+  std::vector<int> parent;               // per avatar joint: its parent joint, -1 for a root
+  std::vector<int> order;                // avatar joints, parents before children
+  std::vector<bool> anchor;              // matched, with no matched ancestor: moves as its BVH joint
+  std::vector<glm::mat4> rest_world;     // per avatar joint: its world transform in the rest pose
+  std::vector<glm::vec3> skeleton_rest;  // per avatar joint: its BVH joint's rest position (anchors)
+  float scale = 1.0f;                    // avatar units per BVH unit
+  std::vector<std::string> unmatched;    // avatar joints that follow no BVH joint, in joint order
+  int root = -1;                         // the first anchor: what a camera follows; -1 with no match
 };
 
 // Matches each avatar joint to the BVH joint of the same name, ignoring case and a namespace prefix

@@ -60,8 +60,8 @@ void deform_character_parallel(const CharacterDeformJob& job, unsigned threads =
 struct CharacterFrame {
   std::vector<std::span<const glm::vec3>> position_dvs;
   std::vector<std::span<const glm::vec3>> normal_dvs;
-  std::vector<float> weights;        // one per target, all 0 to start with
-  std::vector<glm::mat4> matrices;   // one per joint, identity to start with (the rest pose)
+  std::vector<float> weights;       // one per target, all 0 to start with
+  std::vector<glm::mat4> matrices;  // one per joint, identity to start with (the rest pose)
   std::vector<glm::vec3> head_positions, head_normals;
   std::vector<glm::vec3> positions, normals;  // the result
 

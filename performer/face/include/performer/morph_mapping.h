@@ -25,8 +25,8 @@ struct MorphRecipe {
 
 struct MorphMapping {
   struct OculusNames {
-    std::string oculus;              // one of kOculusVisemes
-    std::vector<std::string> morphs; // names to try, in order
+    std::string oculus;               // one of kOculusVisemes
+    std::vector<std::string> morphs;  // names to try, in order
   };
   std::vector<OculusNames> oculus;
   std::vector<MorphRecipe> recipes;  // one per target, in file order

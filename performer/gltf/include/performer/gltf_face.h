@@ -17,17 +17,17 @@
 namespace performer {
 
 struct GltfFaceOptions {
-  std::string mesh;              // mesh name; empty: the first mesh (in file order) with morph targets
-  bool require_all = false;      // throw when any viseme or expression target is missing
+  std::string mesh;          // mesh name; empty: the first mesh (in file order) with morph targets
+  bool require_all = false;  // throw when any viseme or expression target is missing
 };
 
 struct GltfFace {
-  FaceModel model;                  // targets: visemes in set order, then kHeadExpressions, then any
-                                    // other expression arkit.tsv defines, as found
-  std::string mesh;                 // the mesh read (its name, or "mesh N" when unnamed)
-  std::vector<std::string> sources; // per target: the morphs it was made from, e.g. "viseme_aa" or
-                                    // "1*eyeBlinkLeft + 1*eyeBlinkRight"
-  std::vector<std::string> missing; // our target names the file could not supply
+  FaceModel model;                   // targets: visemes in set order, then kHeadExpressions, then any
+                                     // other expression arkit.tsv defines, as found
+  std::string mesh;                  // the mesh read (its name, or "mesh N" when unnamed)
+  std::vector<std::string> sources;  // per target: the morphs it was made from, e.g. "viseme_aa" or
+                                     // "1*eyeBlinkLeft + 1*eyeBlinkRight"
+  std::vector<std::string> missing;  // our target names the file could not supply
 };
 
 // Reads the mesh (all triangle primitives merged, in mesh space: node transforms are not applied;

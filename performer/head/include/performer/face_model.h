@@ -25,10 +25,10 @@ struct MorphTarget {
 };
 
 struct FaceModel {
-  std::vector<glm::vec3> positions;      // neutral face, metres
-  std::vector<glm::vec3> normals;        // unit, one per vertex
-  std::vector<std::uint32_t> indices;    // triangles, three per triangle, counter-clockwise from outside
-  std::vector<MorphTarget> targets;      // names unique
+  std::vector<glm::vec3> positions;    // neutral face, metres
+  std::vector<glm::vec3> normals;      // unit, one per vertex
+  std::vector<std::uint32_t> indices;  // triangles, three per triangle, counter-clockwise from outside
+  std::vector<MorphTarget> targets;    // names unique
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t triangle_count() const { return indices.size() / 3; }

@@ -32,11 +32,11 @@ namespace performer {
 inline constexpr std::array<std::string_view, 5> kHeadExpressions = {"smile", "worry", "surprise", "anger", "blink"};
 
 struct HeadParams {
-  int rings = 78;       // latitude rows (the mouth line adds 2 * mouth_rows + 1 and takes a few)
-  int segments = 112;   // longitude columns; even, so the head is mirror-symmetric about x = 0
-  int mouth_rows = 3;   // rows on each side of the mouth line for the lips' inner surfaces, 1..8
-  float focus = 1.0f;   // how strongly rows and columns crowd onto eyes and mouth: 0 uniform, up to 3
-  float scale = 1.0f;   // uniform size factor for positions and deltas
+  int rings = 78;      // latitude rows (the mouth line adds 2 * mouth_rows + 1 and takes a few)
+  int segments = 112;  // longitude columns; even, so the head is mirror-symmetric about x = 0
+  int mouth_rows = 3;  // rows on each side of the mouth line for the lips' inner surfaces, 1..8
+  float focus = 1.0f;  // how strongly rows and columns crowd onto eyes and mouth: 0 uniform, up to 3
+  float scale = 1.0f;  // uniform size factor for positions and deltas
 };
 
 // The neutral head and its targets: every viseme of `set` in ID order, each named like the viseme,

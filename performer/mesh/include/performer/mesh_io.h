@@ -14,8 +14,8 @@ namespace performer {
 // Views of the streams to write, owning nothing.
 struct MeshView {
   std::span<const glm::vec3> positions;
-  std::span<const glm::vec3> normals;       // empty: no normals written
-  std::span<const std::uint32_t> indices;   // triangles, counter-clockwise from outside
+  std::span<const glm::vec3> normals;      // empty: no normals written
+  std::span<const std::uint32_t> indices;  // triangles, counter-clockwise from outside
 };
 
 // Binary little-endian PLY (whatever the host's byte order): vertex x y z [nx ny nz] as float,

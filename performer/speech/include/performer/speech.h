@@ -20,9 +20,9 @@ struct TimedPhoneme {
 };
 
 struct Speech {
-  int sample_rate = 0;                // Hz
-  std::vector<std::int16_t> samples;  // mono PCM
-  std::vector<TimedPhoneme> phonemes; // ordered by start, non-overlapping
+  int sample_rate = 0;                 // Hz
+  std::vector<std::int16_t> samples;   // mono PCM
+  std::vector<TimedPhoneme> phonemes;  // ordered by start, non-overlapping
   // Seconds of audio; 0 without a sample rate.
   double duration() const;
 };

@@ -34,8 +34,8 @@ struct Blink {
 // (0, 1), min_interval < duration, or mean_interval < min_interval.
 std::vector<Blink> generate_blinks(const BlinkParams& params, double begin, double end);
 
-// The blink weight at t, for blinks in start order (as generated): a ramp up to 1 over close_fraction of a blink, back down over the rest; 0
-// between blinks.
+// The blink weight at t, for blinks in start order (as generated): a ramp up to 1 over close_fraction of a blink, back
+// down over the rest; 0 between blinks.
 double blink_weight(std::span<const Blink> blinks, double close_fraction, double t);
 
 }  // namespace performer

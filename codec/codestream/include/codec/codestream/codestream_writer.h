@@ -30,7 +30,7 @@ class CodestreamWriter {
 
  private:
   std::vector<std::uint8_t> bytes_;
-  std::vector<unsigned> parts_written_;  // per tile
+  std::vector<unsigned> parts_written_;   // per tile
   std::vector<unsigned> parts_declared_;  // per tile: nonzero TNsot seen, or 0
   bool finished_ = false;
 };

@@ -28,8 +28,8 @@ struct DecodeRegion {
 };
 
 struct DecodeOptions {
-  int reduce = 0;          // discard this many of the finest resolution levels (opj_decompress -r)
-  int max_layers = 0;      // decode only the first max_layers quality layers; 0 = all
+  int reduce = 0;      // discard this many of the finest resolution levels (opj_decompress -r)
+  int max_layers = 0;  // decode only the first max_layers quality layers; 0 = all
   // Refuse streams whose image, tile structure or working buffers would need more than this.
   std::size_t max_memory = std::size_t{2} << 30;
   // The inverse DWT of irreversible (9/7) tile-components; null: the CPU lifting backend. The

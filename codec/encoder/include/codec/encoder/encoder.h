@@ -14,16 +14,16 @@ enum class FileFormat { Codestream, Jp2, Jph };
 // Milliseconds spent in each stage of one encode (the thesis' Table 4.1 split, finer). GPU stages
 // are measured with a glFinish before each clock read, so they are real, not estimates.
 struct StageTimes {
-  double setup = 0;            // planning, thread pools and DWT backends (less the GL times below)
-  double gl_context = 0;       // creating the GL context (GPU DWT only)
-  double shader_compile = 0;   // compiling the DWT shader (GPU DWT only)
-  double level_shift = 0;      // DC level shift and component transform
-  double upload = 0;           // planes to the GPU
-  double dwt = 0;              // the transform itself
-  double download = 0;         // planes back from the GPU
-  double tier1 = 0;            // tier-1, which quantises lossy code-blocks as it loads them
-  double rate_control = 0;     // hulls, allocation, and the trial assemblies that size the file
-  double tier2 = 0;            // the final packets and codestream
+  double setup = 0;           // planning, thread pools and DWT backends (less the GL times below)
+  double gl_context = 0;      // creating the GL context (GPU DWT only)
+  double shader_compile = 0;  // compiling the DWT shader (GPU DWT only)
+  double level_shift = 0;     // DC level shift and component transform
+  double upload = 0;          // planes to the GPU
+  double dwt = 0;             // the transform itself
+  double download = 0;        // planes back from the GPU
+  double tier1 = 0;           // tier-1, which quantises lossy code-blocks as it loads them
+  double rate_control = 0;    // hulls, allocation, and the trial assemblies that size the file
+  double tier2 = 0;           // the final packets and codestream
   double total() const {
     return setup + gl_context + shader_compile + level_shift + upload + dwt + download + tier1 + rate_control + tier2;
   }
@@ -33,10 +33,10 @@ struct StageTimes {
 struct EncodeReport {
   StageTimes times;
   int threads = 0;
-  std::string dwt_backend;             // the backend that ran the DWT, with its renderer for the GPU
-  std::string dwt_reason;              // why that backend (--dwt auto's decision, or what was asked)
-  std::vector<std::string> notices;    // one line each, e.g. the GPU fallback
-  std::size_t recoded_blocks = 0;      // pass skipping: blocks coded again after allocation (a block may count twice)
+  std::string dwt_backend;           // the backend that ran the DWT, with its renderer for the GPU
+  std::string dwt_reason;            // why that backend (--dwt auto's decision, or what was asked)
+  std::vector<std::string> notices;  // one line each, e.g. the GPU fallback
+  std::size_t recoded_blocks = 0;    // pass skipping: blocks coded again after allocation (a block may count twice)
 };
 
 // Encodes an image to a JPEG 2000 codestream (.j2k) or a JP2 file. Throws EncodeError.

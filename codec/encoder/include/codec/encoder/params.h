@@ -24,7 +24,7 @@ struct LayerTarget {
 class EncodeEngine;
 
 struct EncodeParams {
-  bool lossless = true;               // reversible 5/3 + RCT; otherwise irreversible 9/7 + ICT
+  bool lossless = true;  // reversible 5/3 + RCT; otherwise irreversible 9/7 + ICT
   DwtDevice dwt = DwtDevice::Auto;
   // Lossy: quantisation step of the image-domain error, relative to the sample range 2^precision;
   // each subband's step is this divided by its synthesis norm, so every band costs the same
@@ -32,8 +32,8 @@ struct EncodeParams {
   double base_step = 1.0 / 2048;
   // Lossy: quality layers, increasing. Empty: one layer keeping every coded pass.
   std::vector<LayerTarget> layers;
-  int levels = 5;                     // decomposition levels NL (0..32)
-  std::int64_t image_x0 = 0, image_y0 = 0;  // XOsiz, YOsiz: where the image sits on the reference grid
+  int levels = 5;                                // decomposition levels NL (0..32)
+  std::int64_t image_x0 = 0, image_y0 = 0;       // XOsiz, YOsiz: where the image sits on the reference grid
   std::int64_t tile_width = 0, tile_height = 0;  // 0: one tile covering the image
   std::int64_t tile_x0 = 0, tile_y0 = 0;         // XTOsiz, YTOsiz
   int codeblock_width = 64, codeblock_height = 64;
@@ -48,8 +48,8 @@ struct EncodeParams {
   // is coded by one cleanup pass: on bit-plane 0 without a target; with one (a single layer only),
   // from the plane rate control picks per block. The EBCOT mode switches (block_style) do not apply.
   bool ht = false;
-  int guard_bits = -1;                // -1: 2 for lossless, 1 for lossy
-  int threads = 0;                    // 0: all hardware threads
+  int guard_bits = -1;  // -1: 2 for lossless, 1 for lossy
+  int threads = 0;      // 0: all hardware threads
   // Byte and PSNR targets: tier-1 stops coding a block once its bit-planes fall far below the
   // predicted final slope threshold (README, "Pass skipping"). false codes every pass of every block.
   bool skip_passes = true;

@@ -11,7 +11,7 @@ namespace codec {
 
 // One image component as the encoder takes it: integer samples at full resolution.
 struct SourceComponent {
-  int precision = 8;       // bits per sample, 1..16 here (the standard allows up to 38)
+  int precision = 8;  // bits per sample, 1..16 here (the standard allows up to 38)
   bool is_signed = false;
   imageio::SamplePlane samples;  // row-major, width * height (written in full before it is read)
 };

@@ -12,9 +12,9 @@ namespace codec::rate {
 // candidates for PCRD-opt: any other truncation point is beaten, for every Lagrange multiplier, by
 // some hull point (EBCOT, section III-B).
 struct HullPoint {
-  int passes;          // coding passes included (1-based count: PassInfo index + 1)
-  std::size_t bytes;   // cumulative codeword bytes to decode those passes (PassInfo::length)
-  double distortion;   // cumulative weighted distortion decrease through those passes
+  int passes;         // coding passes included (1-based count: PassInfo index + 1)
+  std::size_t bytes;  // cumulative codeword bytes to decode those passes (PassInfo::length)
+  double distortion;  // cumulative weighted distortion decrease through those passes
   // Distortion gained per byte from the previous hull point (or from truncating at 0 passes, the
   // implicit origin (0 bytes, 0 distortion)). Positive and strictly decreasing along the hull, as
   // stored doubles, so callers may compare slopes exactly. +infinity only for a first point that

@@ -74,12 +74,12 @@ class RateAllocator {
   void complete_greedily(std::vector<std::size_t>& points, std::size_t& room, std::size_t from) const;
 
   std::span<const std::vector<HullPoint>> hulls_;
-  std::vector<Step> order_;                   // every hull step, by decreasing slope
-  std::vector<std::size_t> prefix_bytes_;     // [k] = bytes of order_[0..k); size order_.size() + 1
-  std::vector<double> prefix_distortion_;     // [k] = distortion of order_[0..k)
-  std::vector<std::size_t> suffix_min_bytes_; // [k] = fewest bytes of any step in order_[k..]
-  std::vector<std::size_t> first_step_;       // block b's steps are rank_[first_step_[b] .. first_step_[b+1])
-  std::vector<std::uint32_t> rank_;           // position in order_ of each block's steps, increasing
+  std::vector<Step> order_;                    // every hull step, by decreasing slope
+  std::vector<std::size_t> prefix_bytes_;      // [k] = bytes of order_[0..k); size order_.size() + 1
+  std::vector<double> prefix_distortion_;      // [k] = distortion of order_[0..k)
+  std::vector<std::size_t> suffix_min_bytes_;  // [k] = fewest bytes of any step in order_[k..]
+  std::vector<std::size_t> first_step_;        // block b's steps are rank_[first_step_[b] .. first_step_[b+1])
+  std::vector<std::uint32_t> rank_;            // position in order_ of each block's steps, increasing
 };
 
 }  // namespace codec::rate

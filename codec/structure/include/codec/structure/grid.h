@@ -8,7 +8,7 @@ namespace codec {
 
 // The reference grid and its tiling, as the SIZ marker states them (T.800 A.5.1, B.2, B.3).
 struct ImageGrid {
-  Rect image;                  // (XOsiz, YOsiz) .. (Xsiz, Ysiz)
+  Rect image;                    // (XOsiz, YOsiz) .. (Xsiz, Ysiz)
   std::int64_t tile_width = 0;   // XTsiz
   std::int64_t tile_height = 0;  // YTsiz
   std::int64_t tile_x0 = 0;      // XTOsiz

@@ -49,10 +49,10 @@ struct Precinct {
 
 struct Subband {
   BandOrientation orientation = BandOrientation::LL;
-  int level = 0;            // decomposition level nb (NL for LL)
-  Rect rect;                // in subband coordinates (B-15)
-  dwt::LayoutRect layout;   // where the DWT leaves it in the tile-component plane (Mallat layout)
-  int xcb = 0, ycb = 0;     // effective code-block exponents, limited by the precinct size
+  int level = 0;           // decomposition level nb (NL for LL)
+  Rect rect;               // in subband coordinates (B-15)
+  dwt::LayoutRect layout;  // where the DWT leaves it in the tile-component plane (Mallat layout)
+  int xcb = 0, ycb = 0;    // effective code-block exponents, limited by the precinct size
 };
 
 struct Resolution {

@@ -33,7 +33,8 @@ struct SegmentPiece {
 // decode through pass i (T1's PassInfo::length), so a piece's bytes are the difference of two.
 template <class CumulativeLength>
 std::vector<SegmentPiece> split_into_segments(const t1::BlockStyle& style, int first_pass, int count,
-                                              CumulativeLength cumulative_length, BlockCoder coder = BlockCoder::Ebcot) {
+                                              CumulativeLength cumulative_length,
+                                              BlockCoder coder = BlockCoder::Ebcot) {
   std::vector<SegmentPiece> pieces;
   auto before = [&](int pass) -> std::size_t { return pass == 0 ? 0 : cumulative_length(pass - 1); };
   int start = first_pass;

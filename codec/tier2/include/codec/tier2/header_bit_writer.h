@@ -26,9 +26,9 @@ class HeaderBitWriter {
 
  private:
   std::vector<std::uint8_t>& out_;
-  std::uint8_t acc_ = 0;   // bits of the byte being assembled, right-aligned
-  int filled_ = 0;         // how many bits acc_ holds
-  int capacity_ = 8;       // 7 right after a 0xFF byte, else 8
+  std::uint8_t acc_ = 0;  // bits of the byte being assembled, right-aligned
+  int filled_ = 0;        // how many bits acc_ holds
+  int capacity_ = 8;      // 7 right after a 0xFF byte, else 8
   std::uint64_t bits_ = 0;
 };
 

@@ -65,10 +65,10 @@ class GpuDeformer {
   bool bones_in_texture_ = false;
   glc::Program program_;
   GLint face_weights_location_ = -1, face_acting_location_ = -1;
-  glc::Buffer rest_;       // position, normal per vertex
-  glc::Buffer skin_;       // 4 x uint16 joints, 4 x float weights per vertex
-  glc::Buffer face_dvs_;   // per target: head_count position DVs, then head_count normal DVs
-  glc::Buffer bones_;      // the bone matrices (uniform or texture buffer)
+  glc::Buffer rest_;      // position, normal per vertex
+  glc::Buffer skin_;      // 4 x uint16 joints, 4 x float weights per vertex
+  glc::Buffer face_dvs_;  // per target: head_count position DVs, then head_count normal DVs
+  glc::Buffer bones_;     // the bone matrices (uniform or texture buffer)
   glc::Texture bone_texture_;
   glc::Buffer output_;
   // A 1x1 target to draw to: a headless context may have no default framebuffer, and GL refuses

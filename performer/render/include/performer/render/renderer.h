@@ -56,9 +56,9 @@ class Renderer {
   const Character* character_;
   RenderSettings settings_;
   int samples_ = 0;
-  std::size_t scalp_index_count_ = 0;  // the triangles the hair shells are drawn over
-  float hair_length_ = 0.0f;            // the outermost shell's distance from the scalp
-  std::vector<glm::vec4> snow_scratch_; // each frame's flakes on their way to the GPU
+  std::size_t scalp_index_count_ = 0;    // the triangles the hair shells are drawn over
+  float hair_length_ = 0.0f;             // the outermost shell's distance from the scalp
+  std::vector<glm::vec4> snow_scratch_;  // each frame's flakes on their way to the GPU
   glc::Renderbuffer color_, depth_, resolved_;
   glc::Framebuffer scene_fbo_, resolve_fbo_;
   glc::Program character_program_, outline_program_, hair_program_, sky_program_, floor_program_, snow_program_;

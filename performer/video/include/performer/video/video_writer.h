@@ -18,7 +18,7 @@ struct VideoSettings {
 };
 
 struct AudioTrack {
-  int sample_rate = 0;                   // Hz
+  int sample_rate = 0;                    // Hz
   std::span<const std::int16_t> samples;  // mono PCM, starting with the first video frame
 };
 
