@@ -1,5 +1,5 @@
-"""Shared helpers of bench/table41, bench/psnr and bench/speed: finding the tools, running the encoders,
-timing them, describing the machine, and printing Markdown tables.
+"""Shared helpers of bench/table41, bench/psnr, bench/speed and bench/decode: finding the tools, running the
+encoders, timing them, describing the machine, and printing Markdown tables.
 
 Standard library only (matplotlib is imported by table41 for --plot, and only then)."""
 
@@ -181,8 +181,8 @@ def renderer_lines(renderer):
     return lines
 
 
-def machine_lines(threads):
-    return [f"CPU: {cpu_model()}, {hardware_threads()} hardware threads; every encoder runs with {threads} threads"]
+def machine_lines(threads, who="every encoder"):
+    return [f"CPU: {cpu_model()}, {hardware_threads()} hardware threads; {who} runs with {threads} threads"]
 
 
 # ---------------------------------------------------------------- encoders
@@ -225,6 +225,24 @@ def run_measured(cmd, what):
         raise BenchError(f"{what} failed (exit {proc.returncode}): {tail}")
     return {"wall_s": wall, "max_rss_kb": usage.ru_maxrss, "rss_floor_kb": floor, "stdout": stdout,
             "stderr": stderr}
+
+
+def encode_command(tools, encoder, image, output, bpp, threads, j2kenc_options=(), raw_bpp=24.0):
+    """The command line that encodes `image` into `output` with `encoder` ("j2kenc", "opj" or "grk") at
+    `bpp` bits per pixel, or losslessly when `bpp` is None: 1 tile, 1 layer, 5 decomposition levels, 9/7
+    lossy (j2kenc --rate BPP; opj/grk -I -r raw_bpp/BPP, a compression ratio) or 5/3 and RCT lossless.
+    `j2kenc_options` go right after j2kenc's -i and -o. Every encoder gets `threads` threads."""
+    if encoder == "j2kenc":
+        cmd = [tools["j2kenc"], "-i", image, "-o", output, *j2kenc_options]
+        cmd += ["--lossless"] if bpp is None else ["--rate", f"{bpp:g}"]
+        return cmd + ["--levels", "5", "--threads", str(threads)]
+    if encoder in ("opj", "grk"):
+        tool = "opj_compress" if encoder == "opj" else "grk_compress"
+        cmd = [tools[tool], "-i", image, "-o", output, "-n", "6"]
+        if bpp is not None:
+            cmd += ["-I", "-r", f"{raw_bpp / bpp:g}"]
+        return cmd + (["-threads", str(threads)] if encoder == "opj" else ["-H", str(threads)])
+    raise BenchError(f"unknown encoder {encoder}")
 
 
 def timing_report(stderr):
@@ -298,6 +316,13 @@ def psnr(tools, reference, test):
     r["channel_db"] = [fl(v) for v in r["channel_db"]]
     r["all_db"] = fl(r["all_db"])
     return r
+
+
+def rss_cell(r):
+    """Peak RSS in MiB of a result with max_rss_kb and rss_floor_kb (see run_measured); '<= N' where the
+    reading is no more than the floor this script's own size sets."""
+    mib = r["max_rss_kb"] / 1024
+    return f"<= {mib:.1f}" if r["max_rss_kb"] <= r["rss_floor_kb"] else f"{mib:.1f}"
 
 
 def median_run(runs, key="total_s"):

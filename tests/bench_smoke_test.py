@@ -1,8 +1,10 @@
 #!/usr/bin/python3
-"""Smoke test of bench/table41, bench/psnr and bench/speed, so that the scripts cannot rot: table41 on
-128x128 (one run, all four encoders, CSV and figure), psnr on one small synthetic image (the edges
-pattern, with a PNG gAMA chunk like the Kodak photographs carry) at the three
-rates of Table 4.2, and speed on 128x128 (one run, all six encoders, 0.75 bpp and lossless, JSON).
+"""Smoke test of bench/table41, bench/psnr, bench/speed and bench/decode, so that the scripts cannot rot:
+table41 on 128x128 (one run, all four encoders, CSV and figure), psnr on one small synthetic image (the
+edges pattern, with a PNG gAMA chunk like the Kodak photographs carry) at the three
+rates of Table 4.2, speed on 128x128 (one run, all six encoders, 0.75 bpp and lossless, JSON), and
+decode on 128x128 (one run, the four decoders on j2kenc's and opj_compress's streams, full resolution
+and --reduce 2, JSON).
 It checks the shape of the Markdown tables (header columns, one row per
 size/encoder or image/rate/encoder, numbers that parse), not speed.
 
@@ -249,6 +251,72 @@ def test_speed(bin_dir, tmp):
         check(all(len(r["runs_wall_s"]) == 1 for r in data["results"]), "speed JSON: runs_wall_s should hold 1 run")
 
 
+def test_decode(bin_dir, tmp):
+    json_path = os.path.join(tmp, "decode.json")
+    rc, out, err = run([sys.executable, os.path.join(ROOT, "bench", "decode"), "--sizes", "128", "--runs", "1",
+                        "--streams", "j2kenc,opj", "--bin", bin_dir, "--json", json_path,
+                        "--out", os.path.join(tmp, "decode")])
+    if not check(rc == 0, f"decode exited {rc}: {err.strip()[-2000:]}"):
+        return
+    check(re.search(r"^CPU: .+, \d+ hardware threads; every encoder and decoder runs with 2 threads", out, re.M)
+          is not None, "decode: no CPU line")
+    renderer = re.search(r"^GL renderer \(GPU path\): (\S+)", out, re.M)
+    check(renderer is not None, "decode: no GL renderer line")
+    if "llvmpipe" in out:
+        check("not a GPU" in out, "decode: llvmpipe named without saying it is not a GPU")
+    check(re.search(r"^Tools: j2kdec .*opj_decompress .*grk_decompress", out, re.M) is not None,
+          "decode: no tool versions line")
+    heading = next((line for line in out.splitlines() if line.startswith("## 128x128: ")), None)
+    if not check(heading is not None, "decode: no '## 128x128: ...' table heading"):
+        return
+    header, rows = table_after(out, heading)
+    check(header == ["stream", "rate", "resolution", "decoder", "wall s (median)", "x Grok", "peak RSS MB",
+                     "vs opj_decompress"], f"decode header: {header}")
+    check(len(rows) == 32, f"decode: {len(rows)} rows, expected 32 (2 rates x 2 streams x 2 resolutions x 4 decoders)")
+    decoders = ["j2kdec --dwt cpu", "j2kdec --dwt gpu", "opj_decompress", "grk_decompress"]
+    for i, row in enumerate(rows):
+        if not check(header and len(row) == len(header), f"decode row has {len(row)} cells: {row}"):
+            continue
+        rate = "0.75 bpp" if i < 16 else "lossless"
+        stream = ["j2kenc", "opj_compress"][i // 8 % 2]
+        resolution = "full" if i % 8 < 4 else "reduce 2"
+        expected = (stream, rate, resolution, decoders[i % 4])
+        check(tuple(row[:3]) == expected[:3] and row[3].startswith(expected[3]), f"decode row {i}: {row[:4]}, "
+              f"expected {expected}")
+        if row[3].startswith("j2kdec --dwt gpu") and rate != "lossless" and renderer:
+            check(renderer.group(1) in row[3], f"decode: the GPU row does not name the renderer: {row[3]}")
+        number(row[4], f"decode {row[3]} wall s")
+        x = number(row[5], f"decode {row[3]} x Grok")
+        if row[3] == "grk_decompress":
+            check(x == 1.0, f"decode: Grok's own x Grok is {row[5]}")
+        number(row[6].removeprefix("<= "), f"decode {row[3]} peak RSS")
+        if row[3] == "opj_decompress":
+            reference = "(reference; = input)" if rate == "lossless" and resolution == "full" else "(reference)"
+            check(row[7] == reference, f"decode: opj_decompress's check cell {row[7]}, expected {reference}")
+        elif rate == "lossless":
+            check(row[7] == "exact", f"decode: {row[3]} differs from opj_decompress on a lossless stream: {row[7]}")
+        else:
+            m = re.fullmatch(r"exact|max diff (\d+)", row[7])
+            check(m is not None and (m.group(1) is None or int(m.group(1)) <= 2),
+                  f"decode: {row[3]} at 0.75 bpp against opj_decompress: {row[7]}")
+    header, rows = table_after(out, "## Summary (wall s, median; in brackets x grk_decompress)")
+    check(header == ["image", "stream", "rate", "resolution"] + decoders, f"decode summary header: {header}")
+    check(len(rows) == 8 and all(r[0] == "128²" for r in rows), f"decode summary rows: {rows}")
+    for row in rows:
+        for cell in row[4:]:
+            m = re.fullmatch(r"(\d+\.\d+) \((\d+\.\d+)x\)", cell)
+            check(m is not None, f"decode summary cell '{cell}' is not 'S (Xx)'")
+    check("Not checked: the targets are for the 2048x2048 image" in out, "decode: no targets note")
+    if check(os.path.isfile(json_path), "decode wrote no JSON"):
+        with open(json_path, encoding="utf-8") as f:
+            data = json.load(f)
+        check([r["decoder"] for r in data["results"]] == ["j2kdec-cpu", "j2kdec-gpu", "opj", "grk"] * 8,
+              f"decode JSON decoders: {[r['decoder'] for r in data['results']]}")
+        check(all(len(r["runs_wall_s"]) == 1 for r in data["results"]), "decode JSON: runs_wall_s should hold 1 run")
+        check(len(data["streams"]) == 4 and all(s["bytes"] > 0 for s in data["streams"]),
+              f"decode JSON streams: {data['streams']}")
+
+
 def test_errors(bin_dir):
     rc, out, err = run([sys.executable, os.path.join(ROOT, "bench", "psnr"), "/nonexistent/x.png", "--bin", bin_dir])
     check(rc == 1 and err.count("\n") == 1 and err.startswith("psnr: "), f"psnr on a missing file: rc {rc}, {err!r}")
@@ -256,6 +324,8 @@ def test_errors(bin_dir):
     check(rc == 1 and err.count("\n") == 1 and err.startswith("table41: "), f"table41 --sizes 0: rc {rc}, {err!r}")
     rc, out, err = run([sys.executable, os.path.join(ROOT, "bench", "speed"), "--rates", "0.75,x", "--bin", bin_dir])
     check(rc == 1 and err.count("\n") == 1 and err.startswith("speed: "), f"speed --rates 0.75,x: rc {rc}, {err!r}")
+    rc, out, err = run([sys.executable, os.path.join(ROOT, "bench", "decode"), "--reduce", "0,9", "--bin", bin_dir])
+    check(rc == 1 and err.count("\n") == 1 and err.startswith("decode: "), f"decode --reduce 0,9: rc {rc}, {err!r}")
 
 
 def main():
@@ -267,6 +337,7 @@ def main():
         test_table41(args.bin, tmp)
         test_psnr(args.bin, tmp)
         test_speed(args.bin, tmp)
+        test_decode(args.bin, tmp)
         test_errors(args.bin)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
