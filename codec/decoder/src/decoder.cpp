@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 
+#include "base/thread_pool.h"
 #include "codestream_reader.h"
 #include "dwt_cpu/cpu_backend.h"
 #include "jp2_colour.h"
@@ -145,9 +146,12 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
 
   double image_bytes = 0;
   for (const DecodedComponent& c : image.components) image_bytes += static_cast<double>(c.samples.size()) * 4;
-  dwt_cpu::CpuBackend cpu(options.threads);
+  // One set of worker threads for tier-1 and the CPU DWT.
+  base::ThreadPool pool(options.threads);
+  dwt_cpu::CpuBackend cpu(pool);
   dec::TileDecodeSetup setup;
   setup.options = &options;
+  setup.pool = &pool;
   setup.reversible_backend = &cpu;
   setup.irreversible_backend = options.irreversible_backend ? options.irreversible_backend : &cpu;
   setup.memory_budget = static_cast<std::size_t>(static_cast<double>(options.max_memory) - image_bytes);

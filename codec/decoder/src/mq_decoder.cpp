@@ -32,52 +32,6 @@ void MqDecoder::byte_in() {
   }
 }
 
-void MqDecoder::renormalise() {
-  // RENORMD (Figure C.18).
-  do {
-    if (ct_ == 0) byte_in();
-    a_ <<= 1;
-    c_ <<= 1;
-    --ct_;
-  } while ((a_ & 0x8000) == 0);
-}
-
-int MqDecoder::decode(MqDecoderContext& cx) {
-  // DECODE (Figure C.15) with LPS_EXCHANGE (C.17) and MPS_EXCHANGE (C.16).
-  const t1::MqStateRow& row = t1::kMqStates[cx.state];
-  const std::uint32_t qe = row.qe;
-  int d;
-  a_ -= qe;
-  if ((c_ >> 16) < qe) {
-    if (a_ < qe) {
-      d = cx.mps;
-      cx.state = row.nmps;
-    } else {
-      d = 1 - cx.mps;
-      if (row.switch_mps) cx.mps = static_cast<std::uint8_t>(1 - cx.mps);
-      cx.state = row.nlps;
-    }
-    a_ = qe;
-    renormalise();
-  } else {
-    c_ -= qe << 16;
-    if ((a_ & 0x8000) == 0) {
-      if (a_ < qe) {
-        d = 1 - cx.mps;
-        if (row.switch_mps) cx.mps = static_cast<std::uint8_t>(1 - cx.mps);
-        cx.state = row.nlps;
-      } else {
-        d = cx.mps;
-        cx.state = row.nmps;
-      }
-      renormalise();
-    } else {
-      d = cx.mps;
-    }
-  }
-  return d;
-}
-
 void RawDecoder::start(std::span<const std::uint8_t> segment) {
   data_ = segment;
   pos_ = 0;

@@ -143,12 +143,26 @@ bool reaches(const Rect& block, int level, const Rect& window) {
 
 // Tier-1 and dequantisation of every code-block of a tile-component that reaches `window`, into
 // its plane in the Mallat layout of the (reduced) inverse DWT.
+// One code-block's tier-1 and dequantisation, with what its band says about it.
+struct BlockTask {
+  const CodeBlock* block = nullptr;
+  const BlockState* state = nullptr;
+  BandOrientation orientation = BandOrientation::LL;
+  int mb = 0;            // magnitude bit-planes
+  int x = 0, y = 0;      // top-left in the plane's Mallat layout
+  float half_delta = 0;  // irreversible: half the quantisation step
+  std::int32_t roi_threshold = 0;
+};
+
+// Tier-1 and dequantisation of every code-block of a tile-component that reaches `window`, into
+// its plane in the Mallat layout of the (reduced) inverse DWT. The blocks write disjoint parts of
+// the plane, so they are decoded side by side on `pool`.
 void decode_blocks(const TileComponent& tc, const TileComponentParams& params, const ComponentSize& size, int reduce,
-                   const Rect& window, const std::vector<BlockState>& states, Plane& plane) {
+                   const Rect& window, const std::vector<BlockState>& states, Plane& plane, base::ThreadPool& pool) {
   const int kept_levels = tc.levels - reduce;
   const auto geometry =
       dwt::decomposition(plane.width(), plane.height(), dwt::Origin{plane.rect.x0, plane.rect.y0}, kept_levels);
-  std::vector<std::int32_t> block;
+  std::vector<BlockTask> tasks;
   for (int r = 0; r <= kept_levels; ++r) {
     const Resolution& res = tc.resolutions[static_cast<std::size_t>(r)];
     for (std::size_t bi = 0; bi < res.bands.size(); ++bi) {
@@ -158,44 +172,51 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
           r == 0 ? dwt::LayoutRect{0, 0, static_cast<int>(band.rect.width()), static_cast<int>(band.rect.height())}
                  : dwt::band_rect(geometry, band.level - reduce, band.orientation);
       const StepSize step = step_of(params.quantization, tc.levels, band);
+      BlockTask task;
+      task.orientation = band.orientation;
       // E-2: Mb = G + epsilon_b - 1 magnitude bit-planes, plus the ROI shift (H.1).
-      const int mb = params.quantization.guard_bits + step.exponent - 1 + params.roi_shift;
+      task.mb = params.quantization.guard_bits + step.exponent - 1 + params.roi_shift;
       const double delta =
           std::ldexp(1.0 + step.mantissa / 2048.0, size.precision + band_gain(band.orientation) - step.exponent);
-      const float half_delta = static_cast<float>(delta / 2);
-      const std::int32_t roi_threshold =
-          params.roi_shift > 0 && params.roi_shift < 30 ? (std::int32_t{2} << params.roi_shift) : 0;
+      task.half_delta = static_cast<float>(delta / 2);
+      task.roi_threshold = params.roi_shift > 0 && params.roi_shift < 30 ? (std::int32_t{2} << params.roi_shift) : 0;
       for (const Precinct& p : res.precincts)
         for (const PrecinctBand& pb : p.bands) {
           if (pb.band != static_cast<int>(bi)) continue;
           for (const CodeBlock& cb : pb.blocks) {
             const BlockState& st = states[cb.index];
             if (st.kept_passes == 0 || !reaches(cb.rect, band.level, window)) continue;
-            const int w = static_cast<int>(cb.rect.width()), h = static_cast<int>(cb.rect.height());
-            block.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
-            decode_block(st, mb, w, h, band.orientation, params.coding, block);
-            const int ox = layout.x + static_cast<int>(cb.rect.x0 - band.rect.x0);
-            const int oy = layout.y + static_cast<int>(cb.rect.y0 - band.rect.y0);
-            for (int y = 0; y < h; ++y)
-              for (int x = 0; x < w; ++x) {
-                std::int32_t v =
-                    block[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)];
-                if (roi_threshold) {
-                  // H.2: coefficients at or above 2^s belong to the region and were scaled up by s.
-                  const std::int32_t m = v < 0 ? -v : v;
-                  if (m >= roi_threshold) v = v < 0 ? -(m >> params.roi_shift) : (m >> params.roi_shift);
-                }
-                const std::size_t at = static_cast<std::size_t>(oy + y) * static_cast<std::size_t>(plane.width()) +
-                                       static_cast<std::size_t>(ox + x);
-                if (plane.reversible)
-                  plane.ints[at] = v / 2;  // the half-step dropped: the exact integer
-                else
-                  plane.floats[at] = static_cast<float>(v) * half_delta;
-              }
+            task.block = &cb;
+            task.state = &st;
+            task.x = layout.x + static_cast<int>(cb.rect.x0 - band.rect.x0);
+            task.y = layout.y + static_cast<int>(cb.rect.y0 - band.rect.y0);
+            tasks.push_back(task);
           }
         }
     }
   }
+  const int roi_shift = params.roi_shift;
+  pool.parallel_for(tasks.size(), [&](std::size_t k) {
+    const BlockTask& t = tasks[k];
+    const int w = static_cast<int>(t.block->rect.width()), h = static_cast<int>(t.block->rect.height());
+    std::vector<std::int32_t> block(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
+    decode_block(*t.state, t.mb, w, h, t.orientation, params.coding, block);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        std::int32_t v = block[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)];
+        if (t.roi_threshold) {
+          // H.2: coefficients at or above 2^s belong to the region and were scaled up by s.
+          const std::int32_t m = v < 0 ? -v : v;
+          if (m >= t.roi_threshold) v = v < 0 ? -(m >> roi_shift) : (m >> roi_shift);
+        }
+        const std::size_t at = static_cast<std::size_t>(t.y + y) * static_cast<std::size_t>(plane.width()) +
+                               static_cast<std::size_t>(t.x + x);
+        if (plane.reversible)
+          plane.ints[at] = v / 2;  // the half-step dropped: the exact integer
+        else
+          plane.floats[at] = static_cast<float>(v) * t.half_delta;
+      }
+  });
 }
 
 void inverse_dwt(Plane& plane, int levels, const TileDecodeSetup& setup) {
@@ -438,7 +459,7 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     else
       plane.floats.assign(n, 0.0f);
     decode_blocks(tc, params.components[c], size, reduce, tile_component_rect(setup.window, size.dx, size.dy), blocks,
-                  plane);
+                  plane, *setup.pool);
     try {
       inverse_dwt(plane, tc.levels - reduce, setup);
     } catch (const dwt::DwtError& e) {

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "base/thread_pool.h"
 #include "codec/decoder/decoder.h"
 #include "codec/structure/tile.h"
 #include "codestream_reader.h"
@@ -18,6 +19,7 @@ struct TileDecodeSetup {
   std::size_t memory_budget = 0;                    // for this tile's working set
   Rect window;                                      // the part of the image wanted, on the reference grid
   std::vector<bool> selected;                       // per codestream component: output or not
+  base::ThreadPool* pool = nullptr;                 // tier-1 runs its code-blocks on it
 };
 
 // Bytes one tile's structures and planes would need (an upper bound), so that a hostile header is

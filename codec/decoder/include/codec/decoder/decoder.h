@@ -35,7 +35,7 @@ struct DecodeOptions {
   // The inverse DWT of irreversible (9/7) tile-components; null: the CPU lifting backend. The
   // reversible 5/3 always runs on the CPU (exact integers).
   dwt::DwtBackend* irreversible_backend = nullptr;
-  int threads = 0;  // CPU DWT threads; 0 = one per hardware thread
+  int threads = 0;  // threads of tier-1 and the CPU DWT; 0 = one per hardware thread
   // JP2 files: turn sYCC (colr EnumCS 18) into sRGB, as a viewer shows it. The palette (pclr /
   // cmap) and channel definitions (cdef) are always applied: they say what the channels are.
   bool jp2_sycc_to_srgb = true;
