@@ -33,18 +33,6 @@ std::vector<CodingStyle> styles_of(const TileParams& p) {
   return s;
 }
 
-// E.1.1.1: the band's nominal dynamic range gain, log2 of 1, 2, 2, 4 for LL, HL, LH, HH.
-int band_gain(BandOrientation o) {
-  switch (o) {
-    case BandOrientation::LL:
-      return 0;
-    case BandOrientation::HH:
-      return 2;
-    default:
-      return 1;
-  }
-}
-
 // The step size entry of a band (A.6.4: LL, then HL, LH, HH of each level from the coarsest), or
 // derived from LL's for scalar derived quantisation (E-5).
 StepSize step_of(const Quantization& q, int levels, const Subband& band) {

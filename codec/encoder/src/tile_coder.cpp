@@ -26,18 +26,6 @@ namespace {
 
 int log2_exact(int v) { return std::countr_zero(static_cast<unsigned>(v)); }
 
-// log2 of the nominal gain of each subband (T.800 Table E.1): 0 for LL, 1 for HL and LH, 2 for HH.
-int band_gain(BandOrientation o) {
-  switch (o) {
-    case BandOrientation::LL:
-      return 0;
-    case BandOrientation::HH:
-      return 2;
-    default:
-      return 1;
-  }
-}
-
 // Tier-1 names the orientations itself (it depends on no wavelet code); the values are T.800's.
 static_assert(static_cast<int>(t1::Orientation::LL) == static_cast<int>(BandOrientation::LL) &&
                   static_cast<int>(t1::Orientation::HL) == static_cast<int>(BandOrientation::HL) &&

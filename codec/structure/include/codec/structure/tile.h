@@ -18,6 +18,19 @@ namespace codec {
 // so that geometry, quantisation and the DWT pass them to each other without conversions.
 using BandOrientation = dwt::Orientation;
 
+// log2 of a subband's nominal dynamic range gain (T.800 Table E.1, E.1.1.1): 0 for LL, 1 for HL
+// and LH, 2 for HH. The quantiser's exponents and Mb count from it.
+inline int band_gain(BandOrientation o) {
+  switch (o) {
+    case BandOrientation::LL:
+      return 0;
+    case BandOrientation::HH:
+      return 2;
+    default:
+      return 1;
+  }
+}
+
 // Per component coding style, as COD/COC state it.
 struct CodingStyle {
   int levels = 5;        // NL, 0..32
