@@ -213,8 +213,16 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
     below += insignificant[static_cast<std::size_t>(p)];
     out[static_cast<std::size_t>(p)].error += below;
   }
-  // Counts, quad by quad (T.814 7.3.1: 2x2 quads, samples outside the block insignificant).
-  std::vector<std::int64_t> quads(static_cast<std::size_t>(planes), 0), samples(quads.size(), 0), bits(quads.size(), 0);
+  // Counts, quad by quad (T.814 7.3.1: 2x2 quads, samples outside the block insignificant). On plane
+  // p a quad whose largest magnitude L has bit length l > p is significant; each of its samples of
+  // bit length n > p is, and sends U = bit_width(2 (L >> p) - 1) = l - p + [p < t] bits (T.814
+  // 7.3.7), t the bit length of L without its top bit (L >> p is a power of two exactly when
+  // p >= t). So every count is a sum of terms constant or linear in p over a range of planes, and
+  // is gathered with difference arrays in one visit per sample: quads[p] and samples[p] count,
+  // bits[p] = top[p] - p * samples[p] + extra[p].
+  const auto n = static_cast<std::size_t>(planes) + 1;
+  std::vector<std::int64_t> quad_ends(n, 0), sample_ends(n, 0), top_ends(n, 0), extra_ends(n, 0);
+  std::int64_t quad_count = 0, sample_count = 0, top_sum = 0, extra_count = 0;
   for (int y0 = 0; y0 < b.height; y0 += 2)
     for (int x0 = 0; x0 < b.width; x0 += 2) {
       std::uint32_t m[4] = {0, 0, 0, 0};
@@ -226,17 +234,32 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
       }
       const std::uint32_t largest = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
       const int length = static_cast<int>(std::bit_width(largest));
-      for (int p = 0; p < length; ++p) {
-        int significant = 0;
-        for (std::uint32_t v : m) significant += (v >> p) != 0 ? 1 : 0;
-        // U_q before the exponent predictor: the bit length of 2 mu - 1 for the quad's largest mu
-        // (T.814 7.3.7).
-        const int exponent = static_cast<int>(std::bit_width(2 * (largest >> p) - 1));
-        ++quads[static_cast<std::size_t>(p)];
-        samples[static_cast<std::size_t>(p)] += significant;
-        bits[static_cast<std::size_t>(p)] += significant * exponent;
+      if (length == 0) continue;
+      const int below_top = static_cast<int>(std::bit_width(largest & ~(std::uint32_t{1} << (length - 1))));
+      ++quad_count;
+      --quad_ends[static_cast<std::size_t>(length)];
+      for (const std::uint32_t v : m) {
+        const int sample_length = static_cast<int>(std::bit_width(v));
+        if (sample_length == 0) continue;
+        ++sample_count;
+        --sample_ends[static_cast<std::size_t>(sample_length)];
+        top_sum += length;
+        top_ends[static_cast<std::size_t>(sample_length)] -= length;
+        ++extra_count;
+        --extra_ends[static_cast<std::size_t>(std::min(below_top, sample_length))];
       }
     }
+  std::vector<std::int64_t> quads(n, 0), samples(n, 0), bits(n, 0);
+  for (int p = 0; p < planes; ++p) {
+    const auto i = static_cast<std::size_t>(p);
+    quad_count += quad_ends[i];
+    sample_count += sample_ends[i];
+    top_sum += top_ends[i];
+    extra_count += extra_ends[i];
+    quads[i] = quad_count;
+    samples[i] = sample_count;
+    bits[i] = top_sum - static_cast<std::int64_t>(p) * sample_count + extra_count;
+  }
   for (int p = 0; p < planes; ++p) {
     out[static_cast<std::size_t>(p)].significant_quads = static_cast<double>(quads[static_cast<std::size_t>(p)]);
     out[static_cast<std::size_t>(p)].significant_samples = static_cast<double>(samples[static_cast<std::size_t>(p)]);
