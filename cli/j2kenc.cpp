@@ -235,6 +235,9 @@ int main(int argc, char** argv) {
   app.add_option("--order", order, "progression order: LRCP, RLCP, RPCL, PCRL, CPRL (default LRCP)");
   bool ht = false;
   app.add_flag("--ht", ht, "HTJ2K: code every code-block with the high-throughput block coder of Part 15 (T.814)");
+  bool ht_cleanup_only = false;
+  app.add_flag("--ht-cleanup-only", ht_cleanup_only,
+               "with --ht and a target: no SigProp/MagRef refinement passes (for decoders without them, as Grok 10)");
   app.add_flag("--sop", sop, "SOP marker before every packet");
   app.add_flag("--eph", eph, "EPH marker after every packet header");
   app.add_option("--modes", modes, "code-block mode switches: bypass,reset,termall,vcausal,pterm,segsym");
@@ -306,6 +309,8 @@ int main(int argc, char** argv) {
     options.threads = threads;
     options.code_every_pass = every_pass;
     options.ht = ht;
+    if (ht_cleanup_only && !ht) throw std::invalid_argument("--ht-cleanup-only needs --ht");
+    options.ht_refinement = !ht_cleanup_only;
     options.guard_bits = guard_bits;
     options.sop = sop;
     options.eph = eph;

@@ -161,6 +161,33 @@ TEST(J2kHtRate, DecodesAlikeInOpenJpegAndOpenJph) {
 }
 
 // PSNR targets through the rebuild-and-measure loop: the decoded PSNR lands in [target, target + 0.3].
+// Without refinement passes (EncodeParams::ht_refinement false, j2kenc --ht-cleanup-only), the
+// files decode in Grok too, alike in all three decoders, and within the byte target.
+TEST(J2kHtRate, CleanupOnlyFilesDecodeInEveryDecoder) {
+  const fs::path file = test_support::kodak_photo(5);
+  REQUIRE_SHARED_FILE(file);
+  const imageio::Image img = imageio::read_image(file.string());
+  for (double bpp : kRates) {
+    SCOPED_TRACE(std::to_string(bpp) + " bpp");
+    Scratch s;
+    const double target = std::floor(bpp * img.width * img.height / 8);
+    codec::EncodeParams p = at(target, true);
+    p.threads = 2;
+    p.ht_refinement = false;
+    const std::vector<std::uint8_t> bytes =
+        codec::encode(codec::to_source_image(img, "image"), p, codec::FileFormat::Codestream);
+    EXPECT_LE(static_cast<double>(bytes.size()), target);
+    EXPECT_GE(static_cast<double>(bytes.size()), 0.995 * target);
+    write_bytes(s / "x.j2k", bytes);
+    const double opj = psnr_rgb(img, decode_with("opj_decompress", s / "x.j2k", s / "opj.png"));
+    const double grk = psnr_rgb(img, decode_with("grk_decompress", s / "x.j2k", s / "grk.png"));
+    const double ojph = psnr_rgb(img, decode_with("ojph_expand", s / "x.j2k", s / "ojph.ppm"));
+    EXPECT_GT(opj, bpp < 0.5 ? 20.0 : 25.0);
+    EXPECT_NEAR(grk, opj, 0.01);
+    EXPECT_NEAR(ojph, opj, 0.01);
+  }
+}
+
 TEST(J2kHtRate, PsnrTargetsLandJustAbove) {
   const fs::path file = test_support::kodak_photo(5);
   REQUIRE_SHARED_FILE(file);

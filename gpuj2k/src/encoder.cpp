@@ -154,6 +154,7 @@ codec::EncodeParams base_params(const EncodeOptions& o) {
   p.engine = o.engine ? &o.engine->state().encode : nullptr;
   p.skip_passes = !o.code_every_pass;
   p.ht = o.ht;
+  p.ht_refinement = o.ht_refinement;
   p.dwt = o.dwt == DwtDevice::Cpu   ? codec::DwtDevice::Cpu
           : o.dwt == DwtDevice::Gpu ? codec::DwtDevice::Gpu
                                     : codec::DwtDevice::Auto;

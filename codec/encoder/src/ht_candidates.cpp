@@ -14,11 +14,12 @@ int HtCandidates::lowest_coded() const {
   return -1;
 }
 
-void add_candidates(HtCandidates& candidates, const ht::HtBlock& block, std::span<const int> planes) {
+void add_candidates(HtCandidates& candidates, const ht::HtBlock& block, std::span<const int> planes,
+                    ht::HtPasses passes) {
   candidates.by_plane.resize(static_cast<std::size_t>(block.bit_planes));
   for (const int p : planes) {
     std::optional<t1::EncodedBlock>& slot = candidates.by_plane[static_cast<std::size_t>(p)];
-    if (!slot) slot = ht::encode_ht_block(block, 31, p, t1::Distortion::Measured, ht::HtPasses::CleanupAndRefinement);
+    if (!slot) slot = ht::encode_ht_block(block, 31, p, t1::Distortion::Measured, passes);
   }
   candidates.skipped = false;
 }

@@ -40,7 +40,8 @@ struct HtCandidates {
 
 // Codes the cleanups from `planes` (each below block.bit_planes) that are not coded yet, each with
 // its refinement passes, with Mb = 31 (missing_msbs is set later, sync_missing_msbs).
-void add_candidates(HtCandidates& candidates, const ht::HtBlock& block, std::span<const int> planes);
+void add_candidates(HtCandidates& candidates, const ht::HtBlock& block, std::span<const int> planes,
+                    ht::HtPasses passes = ht::HtPasses::CleanupAndRefinement);
 
 // The block as rate control sees it: bit_planes and energy from the block, and one pass per
 // point of the coded codewords, highest plane first, with each point's length and the distortion

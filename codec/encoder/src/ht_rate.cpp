@@ -23,6 +23,10 @@ double model_bits(const ht::PlaneStatistics& s) {
   return kBitsPerMagnitudeBit * s.magnitude_bits + kBitsPerQuad * s.significant_quads + kBitsPerCleanup;
 }
 
+ht::HtPasses ht_passes(const EncodeParams& params) {
+  return params.ht_refinement ? ht::HtPasses::CleanupAndRefinement : ht::HtPasses::Cleanup;
+}
+
 // The fewest bytes any HT truncation point has: a cleanup segment ends with Scup, the length of its
 // MEL and VLC parts, which is at least 2 (T.814 7.1).
 constexpr double kLeastCleanupBytes = 2;
@@ -114,7 +118,7 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
       const ht::HtBlock block = load_ht_block(coded, coded.jobs[b], params);
       std::vector<ht::PlaneStatistics> s = ht::plane_statistics(block);
       const std::vector<int> planes = planes_between(0, block.bit_planes - 1);
-      add_candidates(coded.ht_candidates[b], block, planes);
+      add_candidates(coded.ht_candidates[b], block, planes, ht_passes(params));
       coded.blocks[b] = truncation_points(coded.ht_candidates[b], block.bit_planes, s.back().error);
       if (stats) (*stats)[k] = std::move(s);
       block_done();
@@ -153,7 +157,7 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
       const int cut = estimated_plane(stats, job.weight, threshold, bytes_per_bit);
       const std::vector<int> planes =
           cut < 0 ? std::vector<int>{top} : planes_between(std::max(0, cut - 1), std::min(top, cut + 1));
-      add_candidates(c, block, planes);
+      add_candidates(c, block, planes, ht_passes(params));
     }
     coded.blocks[b] = truncation_points(c, block.bit_planes, energy);
     block_done();
@@ -194,7 +198,7 @@ void extend_ht_candidates(std::vector<CodedTile>& tiles, const std::vector<HtExt
     CodedTile& coded = tiles[e.tile];
     const ht::HtBlock block = load_ht_block(coded, coded.jobs[e.block], params);
     HtCandidates& c = coded.ht_candidates[e.block];
-    add_candidates(c, block, e.planes);
+    add_candidates(c, block, e.planes, ht_passes(params));
     t1::EncodedBlock& points = coded.blocks[e.block];
     const int missing_msbs = points.missing_msbs;  // the block's, settled by the encoder
     points = truncation_points(c, block.bit_planes, points.energy);

@@ -89,6 +89,9 @@ struct EncodeOptions {
   // from the bit-plane rate control picks when there is a target; one quality layer only; no EBCOT
   // mode switches).
   bool ht = false;
+  // HT with a target: refinement passes (SigProp, MagRef) after each cleanup, which rate control
+  // may keep. false: cleanup passes only, for decoders without HT refinement support (Grok 10).
+  bool ht_refinement = true;
   // Called from worker threads as code-blocks finish (must be thread-safe): blocks done and the
   // total. Returning false cancels the encode, which then throws Error("encode cancelled").
   std::function<bool(std::size_t done, std::size_t total)> progress;

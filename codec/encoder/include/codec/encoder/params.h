@@ -48,6 +48,10 @@ struct EncodeParams {
   // is coded by one cleanup pass: on bit-plane 0 without a target; with one (a single layer only),
   // from the plane rate control picks per block. The EBCOT mode switches (block_style) do not apply.
   bool ht = false;
+  // HT under a target: each candidate cleanup on plane p >= 1 is followed by SigProp and MagRef
+  // passes on p - 1, which rate control may keep (finer truncation points, better quality at a
+  // byte count). false: cleanups only, for decoders that read no HT refinement segment (Grok 10).
+  bool ht_refinement = true;
   int guard_bits = -1;  // -1: 2 for lossless, 1 for lossy
   int threads = 0;      // 0: all hardware threads
   // Byte and PSNR targets: tier-1 stops coding a block once its bit-planes fall far below the
