@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The main job on a fresh Debian 12 machine: set up, build, run DWT round trips through dwtool on the
 # CPU and the GPU (whatever renderer the GL layer finds), encode an image losslessly and lossily and
-# check both through OpenJPEG, then the DWT benchmark, the thesis' Table 4.1 and 4.2 runs and the
-# encoder speed benchmark.
+# check both through OpenJPEG, the same for HTJ2K through OpenJPH, decode them all with j2kdec,
+# then the DWT benchmark, the thesis' Table 4.1 and 4.2 runs, the encoder and decoder speed
+# benchmarks, and the performer.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -34,6 +35,21 @@ opj_decompress -i "$work/lossless.jp2" -o "$work/lossless.png" >/dev/null
 "$bin/j2kenc" -i "$work/mix.png" -o "$work/lossy.j2k" --rate 0.75 --dwt auto --timing
 opj_decompress -i "$work/lossy.j2k" -o "$work/lossy.png" >/dev/null
 "$bin/imgpsnr" "$work/mix.png" "$work/lossy.png"
+echo "== HTJ2K (Part 15): a lossless JPH file and a rate-controlled codestream, decoded by OpenJPH"
+"$bin/j2kenc" -i "$work/mix.png" -o "$work/ht_lossless.jph" --ht --lossless
+ojph_expand -i "$work/ht_lossless.jph" -o "$work/ht_lossless.pgm" >/dev/null
+"$bin/imgpsnr" "$work/mix.png" "$work/ht_lossless.pgm"   # inf: bit-exact
+"$bin/j2kenc" -i "$work/mix.png" -o "$work/ht_lossy.j2c" --ht --rate 0.75
+ojph_expand -i "$work/ht_lossy.j2c" -o "$work/ht_lossy.pgm" >/dev/null
+"$bin/imgpsnr" "$work/mix.png" "$work/ht_lossy.pgm"
+echo "== Our decoder (j2kdec) on those files, the CPU inverse DWT and the GPU one for the 9/7"
+"$bin/j2kdec" -i "$work/lossless.jp2" -o "$work/j2kdec_lossless.png"
+"$bin/imgpsnr" "$work/mix.png" "$work/j2kdec_lossless.png"   # inf
+"$bin/j2kdec" -i "$work/lossy.j2k" -o "$work/j2kdec_lossy.png" --dwt gpu
+"$bin/imgpsnr" "$work/lossy.png" "$work/j2kdec_lossy.png"    # against OpenJPEG's decode: within 1
+"$bin/j2kdec" -i "$work/ht_lossless.jph" -o "$work/j2kdec_ht_lossless.png"
+"$bin/imgpsnr" "$work/mix.png" "$work/j2kdec_ht_lossless.png"   # inf
+"$bin/j2kdec" -i "$work/ht_lossy.j2c" -o "$work/j2kdec_ht_lossy.png" --reduce 1 --region 0,0,384,256
 
 echo "== DWT benchmark"
 "$bin/dwt_bench" --sizes 512,1024,2048,4096 --reps 3
@@ -53,6 +69,8 @@ fi
 
 echo "== Encoder speed: j2kenc against OpenJPEG, Grok and OpenJPH on the 2048x2048 mosaic (bench/speed)"
 $python3 bench/speed --sizes 2048 --runs 3 --json "$work/speed.json"
+echo "== Decoder speed: j2kdec against OpenJPEG and Grok on the 2048x2048 mosaic (bench/decode)"
+$python3 bench/decode --sizes 2048 --runs 3 --json "$work/decode_speed.json"
 
 echo "== The virtual performer: speech to visemes to face, motion capture to the whole character"
 "$bin/performer" visemes --lang yue --text "你好" --fps 30 -o "$work/weights.csv" --wav "$work/hello.wav"
