@@ -5,62 +5,87 @@
 #include <vector>
 
 #include "codec/decoder/decoder.h"
-#include "codec/tier2/codeword_segments.h"
+#include "codec/t1/stripe_columns.h"
 #include "mq_decoder.h"
 
 namespace codec::dec {
 
 namespace {
 
-// Context labels of T.800 Annex D: 0-8 zero coding (Table D.1), 9-13 sign (Table D.3), 14-16
-// magnitude refinement (Table D.4), 17 run-length, 18 UNIFORM (D.3.4).
-constexpr int kRunLength = 17;
-constexpr int kUniform = 18;
-constexpr int kContexts = 19;
-using Contexts = std::array<MqDecoderContext, kContexts>;
+// The decoder walks a code-block exactly as the encoder's passes (codec/t1/src/coding_passes.cpp)
+// do: one state word per stripe column (codec/t1/stripe_columns.h) holding the column's own
+// significance, sign, visited and refined bits and its neighbours' significance, so that a whole
+// column is skipped or run-length decoded after one load and every context is a table lookup.
+namespace column = t1::column;
 
-// D.4 (Table D.7): initial states; UNIFORM 46, run-length 3, zero coding's all-quiet context 4.
+using Contexts = std::array<MqDecoderContext, t1::kContextCount>;
+
+// D.4 (Table D.7): initial states; UNIFORM 46, run-length 3, zero coding's all-quiet context 4,
+// every MPS 0.
 void reset(Contexts& cx) {
-  cx.fill(MqDecoderContext{0, 0});
-  cx[0].state = 4;
-  cx[kRunLength].state = 3;
-  cx[kUniform].state = 46;
+  cx.fill(mq_context(0, 0));
+  cx[0] = mq_context(4, 0);
+  cx[t1::kRunLengthContext] = mq_context(3, 0);
+  cx[t1::kUniformContext] = mq_context(46, 0);
 }
 
-// Table D.1, for LL and LH; HL swaps h and v; HH is separate.
-int zero_context_lh(int h, int v, int d) {
-  if (h == 2) return 8;
-  if (h == 1) return v >= 1 ? 7 : (d >= 1 ? 6 : 5);
-  if (v == 2) return 4;
-  if (v == 1) return 3;
-  return d >= 2 ? 2 : d;
-}
-int zero_context_hh(int h, int v, int d) {
-  const int hv = h + v;
-  if (d >= 3) return 8;
-  if (d == 2) return hv >= 1 ? 7 : 6;
-  if (d == 1) return hv >= 2 ? 5 : (hv == 1 ? 4 : 3);
-  return hv >= 2 ? 2 : hv;
+const t1::ZeroCodingTable& zero_coding_table(BandOrientation o) {
+  switch (o) {
+    case BandOrientation::HL:
+      return t1::kZeroCodingHl;
+    case BandOrientation::HH:
+      return t1::kZeroCodingHh;
+    default:
+      return t1::kZeroCodingLlLh;
+  }
 }
 
-// Per-sample state flags.
-constexpr std::uint8_t kSignificant = 1;
-constexpr std::uint8_t kNegative = 2;
-constexpr std::uint8_t kVisited = 4;  // coded in this bit-plane's significance pass (D.3.1)
-constexpr std::uint8_t kRefined = 8;  // refined at least once (Table D.4)
+// Where a pass's decisions come from: the MQ decoder with their contexts, or raw bits (D.6). The
+// pass logic is written once over these two.
+struct MqSymbols {
+  MqDecoder& mq;
+  Contexts& cx;
 
-enum class PassType { Significance, Refinement, Cleanup };
+  int decision(int context) { return mq.decode(cx[static_cast<std::size_t>(context)]); }
+  // Table D.3 through t1::kSignTable: the decoded bit is the sign XOR the prediction.
+  unsigned sign(unsigned sign_index) {
+    const std::uint8_t entry = t1::kSignTable[sign_index];
+    return static_cast<unsigned>(mq.decode(cx[entry >> 1u])) ^ (entry & 1u);
+  }
+};
+
+struct RawSymbols {
+  RawDecoder& raw;
+
+  int decision(int /*context*/) { return raw.bit(); }
+  unsigned sign(unsigned /*sign_index*/) { return static_cast<unsigned>(raw.bit()); }  // D.6: as is
+};
+
+// A code-block's stripe column words, bordered by one column left and right and one stripe above
+// and below so that make_significant may tell its neighbours without bounds checks. One buffer
+// per thread, reused from block to block.
+struct ColumnGrid {
+  std::uint32_t* origin;  // the word of column 0 of stripe 0
+  std::ptrdiff_t stride;  // words from one stripe to the next
+};
+
+ColumnGrid clear_column_grid(int width, int height) {
+  thread_local std::vector<std::uint32_t> words;
+  const std::ptrdiff_t stride = width + 2;
+  const std::size_t size = static_cast<std::size_t>(stride) * static_cast<std::size_t>((height + 3) / 4 + 2);
+  words.assign(size, 0);
+  return ColumnGrid{words.data() + stride + 1, stride};
+}
 
 class BlockDecoder {
  public:
   BlockDecoder(int w, int h, BandOrientation o, const t1::BlockStyle& style, std::span<std::int32_t> out)
       : w_(w),
         h_(h),
-        stride_(w + 2),
-        orientation_(o),
+        grid_(clear_column_grid(w, h)),
+        zc_(zero_coding_table(o)),
         style_(style),
-        out_(out),
-        flags_(static_cast<std::size_t>(w + 2) * static_cast<std::size_t>(h + 2), 0) {
+        out_(out.data()) {
     reset(cx_);
   }
 
@@ -71,7 +96,7 @@ class BlockDecoder {
     for (int k = 0; k < block.passes; ++k) {
       const int plane = block.top_plane - (k + 2) / 3;
       if (plane < 0) break;  // more passes than bit-planes: a malformed header; stop here
-      const PassType type = k == 0 ? PassType::Cleanup : static_cast<PassType>((k - 1) % 3);
+      const int type = k == 0 ? 2 : (k - 1) % 3;  // 0 significance, 1 refinement, 2 cleanup
       if (passes_left_in_segment == 0) {
         if (segment >= block.segments.size()) break;
         const Segment& s = block.segments[segment++];
@@ -81,22 +106,24 @@ class BlockDecoder {
         passes_left_in_segment = s.passes;
         // D.6: with bypass, significance and refinement passes after the first four bit-planes
         // (pass index 10 on) are raw; the segmentation puts them in segments of their own.
-        raw = style_.bypass && k >= 10 && type != PassType::Cleanup;
+        raw = style_.bypass && k >= 10 && type != 2;
         if (raw)
           raw_.start(bytes);
         else
           mq_.start(bytes);
       }
-      switch (type) {
-        case PassType::Significance:
-          significance_pass(plane, raw);
-          break;
-        case PassType::Refinement:
-          refinement_pass(plane, raw);
-          break;
-        case PassType::Cleanup:
-          cleanup_pass(plane);
-          break;
+      if (type == 0) {
+        if (raw)
+          significance_pass(plane, RawSymbols{raw_});
+        else
+          significance_pass_mq(plane);
+      } else if (type == 1) {
+        if (raw)
+          refinement_pass(plane, RawSymbols{raw_});
+        else
+          refinement_pass_mq(plane);
+      } else {
+        cleanup_pass(plane);
       }
       --passes_left_in_segment;
       if (style_.reset) reset(cx_);  // D.4: contexts reset at the end of each pass
@@ -104,148 +131,126 @@ class BlockDecoder {
   }
 
  private:
-  std::uint8_t& flag(int x, int y) {
-    return flags_[static_cast<std::size_t>(y + 1) * static_cast<std::size_t>(stride_) +
-                  static_cast<std::size_t>(x + 1)];
+  // The MQ passes decode with a local copy of the decoder (written back after) that the compiler
+  // keeps in registers; `flatten` inlines everything into the pass for that to work.
+  [[gnu::flatten]] void significance_pass_mq(int plane) {
+    MqDecoder mq = mq_;
+    significance_pass(plane, MqSymbols{mq, cx_});
+    mq_ = mq;
   }
-  std::int32_t& value(int x, int y) {
-    return out_[static_cast<std::size_t>(y) * static_cast<std::size_t>(w_) + static_cast<std::size_t>(x)];
+  [[gnu::flatten]] void refinement_pass_mq(int plane) {
+    MqDecoder mq = mq_;
+    refinement_pass(plane, MqSymbols{mq, cx_});
+    mq_ = mq;
   }
 
-  // D.7: in vertically causal mode the last row of a stripe ignores the stripe below.
-  bool below_hidden(int y) const { return style_.vertically_causal && (y & 3) == 3; }
-
-  bool sig(int x, int y) { return (flag(x, y) & kSignificant) != 0; }
-
-  struct Neighbours {
-    int h, v, d;
-  };
-  Neighbours count(int x, int y) {
-    const bool hide = below_hidden(y);
-    Neighbours n;
-    n.h = sig(x - 1, y) + sig(x + 1, y);
-    n.v = sig(x, y - 1) + (hide ? 0 : sig(x, y + 1));
-    n.d = sig(x - 1, y - 1) + sig(x + 1, y - 1) + (hide ? 0 : sig(x - 1, y + 1) + sig(x + 1, y + 1));
-    return n;
+  // Records that row r of the column at `w` (output row `value_row`) turned significant with the
+  // given sign: the column words, and the value at the middle of [2^plane, 2^(plane+1)), doubled.
+  void become_significant(std::uint32_t* w, int r, std::int32_t* value, unsigned negative, int plane) {
+    column::make_significant(w, grid_.stride, r, negative, style_.vertically_causal);
+    const std::int32_t magnitude = std::int32_t{3} << plane;  // 1.5 * 2^plane, doubled
+    *value = negative ? -magnitude : magnitude;
   }
-  int zero_context(int x, int y) {
-    const Neighbours n = count(x, y);
-    switch (orientation_) {
-      case BandOrientation::HL:
-        return zero_context_lh(n.v, n.h, n.d);
-      case BandOrientation::HH:
-        return zero_context_hh(n.h, n.v, n.d);
-      default:
-        return zero_context_lh(n.h, n.v, n.d);
+
+  // D.3.1: insignificant samples with at least one significant neighbour.
+  template <class Symbols>
+  void significance_pass(int plane, Symbols s) {
+    for (int y0 = 0; y0 < h_; y0 += 4) {
+      const int rows = std::min(4, h_ - y0);
+      std::uint32_t* words = grid_.origin + (y0 / 4) * grid_.stride;
+      std::int32_t* top = out_ + static_cast<std::ptrdiff_t>(y0) * w_;
+      for (int x = 0; x < w_; ++x) {
+        std::uint32_t* w = words + x;
+        if ((*w & column::kWindow) == 0) continue;  // no significant neighbour anywhere
+        for (int r = 0; r < rows; ++r) {
+          const std::uint32_t around = *w >> (3 * r);  // reloaded: the row above may have changed it
+          if ((around & column::kCentre) || !(around & column::kNeighbours)) continue;
+          *w |= column::visited(r);
+          if (s.decision(zc_[around & column::kNeighbourhood]))
+            become_significant(w, r, top + x + r * w_, s.sign(column::sign_index(w, r)), plane);
+        }
+      }
     }
   }
-  // +1, -1 or 0 for a neighbour's contribution to the sign context (Table D.2).
-  int contribution(int x, int y) {
-    const std::uint8_t f = flag(x, y);
-    if (!(f & kSignificant)) return 0;
-    return (f & kNegative) ? -1 : 1;
-  }
-  int decode_sign(int x, int y) {
-    const bool hide = below_hidden(y);
-    const int h = std::clamp(contribution(x - 1, y) + contribution(x + 1, y), -1, 1);
-    const int v = std::clamp(contribution(x, y - 1) + (hide ? 0 : contribution(x, y + 1)), -1, 1);
-    // Table D.3: {context, XORbit} by H = 1, 0, -1 (rows) and V = 1, 0, -1 (columns).
-    static constexpr int kTable[3][3][2] = {
-        {{13, 0}, {12, 0}, {11, 0}}, {{10, 0}, {9, 0}, {10, 1}}, {{11, 1}, {12, 1}, {13, 1}}};
-    const auto& e = kTable[1 - h][1 - v];
-    return mq_.decode(cx_[static_cast<std::size_t>(e[0])]) ^ e[1];
-  }
-  void become_significant(int x, int y, int negative, int plane) {
-    flag(x, y) |= static_cast<std::uint8_t>(kSignificant | (negative ? kNegative : 0));
-    const std::int32_t magnitude = std::int32_t{3} << plane;  // 1.5 * 2^plane, doubled
-    value(x, y) = negative ? -magnitude : magnitude;
-  }
 
-  // D.3.1
-  void significance_pass(int plane, bool raw) {
-    for (int y0 = 0; y0 < h_; y0 += 4)
-      for (int x = 0; x < w_; ++x)
-        for (int y = y0; y < std::min(y0 + 4, h_); ++y) {
-          std::uint8_t& f = flag(x, y);
-          if (f & kSignificant) continue;
-          const int context = zero_context(x, y);
-          if (context == 0) continue;
-          f |= kVisited;
-          const int bit = raw ? raw_.bit() : mq_.decode(cx_[static_cast<std::size_t>(context)]);
-          if (bit) become_significant(x, y, raw ? raw_.bit() : decode_sign(x, y), plane);
-        }
-  }
-
-  // D.3.3
-  void refinement_pass(int plane, bool raw) {
+  // D.3.3: samples significant before this bit-plane; context by Table D.4.
+  template <class Symbols>
+  void refinement_pass(int plane, Symbols s) {
     const std::int32_t half = std::int32_t{1} << plane;
-    for (int y0 = 0; y0 < h_; y0 += 4)
-      for (int x = 0; x < w_; ++x)
-        for (int y = y0; y < std::min(y0 + 4, h_); ++y) {
-          std::uint8_t& f = flag(x, y);
-          if ((f & (kSignificant | kVisited)) != kSignificant) continue;
-          int bit;
-          if (raw) {
-            bit = raw_.bit();
-          } else {
-            int context = 16;
-            if (!(f & kRefined)) {
-              const Neighbours n = count(x, y);
-              context = (n.h + n.v + n.d) ? 15 : 14;
-            }
-            bit = mq_.decode(cx_[static_cast<std::size_t>(context)]);
-          }
-          f |= kRefined;
+    for (int y0 = 0; y0 < h_; y0 += 4) {
+      std::uint32_t* words = grid_.origin + (y0 / 4) * grid_.stride;
+      std::int32_t* top = out_ + static_cast<std::ptrdiff_t>(y0) * w_;
+      for (int x = 0; x < w_; ++x) {
+        const std::uint32_t word = words[x];  // refinement changes no significance: one load does
+        // Significant before this plane: significant, and not made so by this plane's first pass.
+        const unsigned due = column::significant_rows(word) & ~(word >> 24) & 0xFu;
+        if (due == 0) continue;
+        std::uint32_t refined = 0;
+        for (int r = 0; r < 4; ++r) {
+          if (!(due & (1u << r))) continue;
+          const int bit = s.decision(t1::refinement_context(word, r));
+          refined |= column::refined(r);
           // The interval halves: its middle moves up or down by a quarter of the old width.
-          std::int32_t& v = value(x, y);
+          std::int32_t& v = top[x + r * w_];
           const std::int32_t step = bit ? half : -half;
           v += v < 0 ? -step : step;
         }
+        words[x] = word | refined;
+      }
+    }
   }
 
-  // D.3.4, with the segmentation symbol of D.5.
-  void cleanup_pass(int plane) {
-    for (int y0 = 0; y0 < h_; y0 += 4)
+  // D.3.4: everything the significance pass left, with run-length decoding of quiet stripe
+  // columns; then the segmentation symbol of D.5.
+  [[gnu::flatten]] void cleanup_pass(int plane) {
+    MqDecoder mq = mq_;
+    MqSymbols s{mq, cx_};
+    for (int y0 = 0; y0 < h_; y0 += 4) {
+      const int rows = std::min(4, h_ - y0);
+      std::uint32_t* words = grid_.origin + (y0 / 4) * grid_.stride;
+      std::int32_t* top = out_ + static_cast<std::ptrdiff_t>(y0) * w_;
       for (int x = 0; x < w_; ++x) {
-        int y = y0;
-        const int y_end = std::min(y0 + 4, h_);
-        if (y_end - y0 == 4 && run_length_applies(x, y0)) {
-          if (!mq_.decode(cx_[kRunLength])) continue;  // four insignificant samples
-          int r = mq_.decode(cx_[kUniform]) << 1;
-          r |= mq_.decode(cx_[kUniform]);
-          y = y0 + r;
-          become_significant(x, y, decode_sign(x, y), plane);
-          ++y;
+        std::uint32_t* w = words + x;
+        int r = 0;
+        if (rows == 4) {
+          const std::uint32_t word = *w;
+          // Each of the four significant or coded by the significance pass: only the marks to clear.
+          if (((column::significant_rows(word) | (word >> 24)) & 0xFu) == 0xFu) {
+            *w = word & ~column::kVisitedAll;
+            continue;
+          }
+          // Run-length mode: none of the four significant or visited, and all with the all-zero
+          // neighbourhood (zero-coding context 0 in every orientation).
+          if ((word & (column::kWindow | column::kVisitedAll)) == 0) {
+            if (!mq.decode(cx_[t1::kRunLengthContext])) continue;  // four insignificant samples
+            r = mq.decode(cx_[t1::kUniformContext]) << 1;
+            r |= mq.decode(cx_[t1::kUniformContext]);
+            become_significant(w, r, top + x + r * w_, s.sign(column::sign_index(w, r)), plane);
+            ++r;
+          }
         }
-        for (; y < y_end; ++y) {
-          std::uint8_t& f = flag(x, y);
-          if (f & (kSignificant | kVisited)) continue;
-          if (mq_.decode(cx_[static_cast<std::size_t>(zero_context(x, y))]))
-            become_significant(x, y, decode_sign(x, y), plane);
+        for (; r < rows; ++r) {
+          const std::uint32_t word = *w;
+          if (word & (column::self(r) | column::visited(r))) continue;
+          if (mq.decode(cx_[zc_[(word >> (3 * r)) & column::kNeighbourhood]]))
+            become_significant(w, r, top + x + r * w_, s.sign(column::sign_index(w, r)), plane);
         }
+        *w &= ~column::kVisitedAll;
       }
-    for (std::uint8_t& f : flags_) f &= static_cast<std::uint8_t>(~kVisited);
+    }
     if (style_.segmentation_symbols) {
       // 1010 in the UNIFORM context; a mismatch marks a corrupt pass, but the data decoded so far
       // stands (the decoder has no better value to put in its place).
-      for (int i = 0; i < 4; ++i) mq_.decode(cx_[kUniform]);
+      for (int i = 0; i < 4; ++i) mq.decode(cx_[t1::kUniformContext]);
     }
+    mq_ = mq;
   }
 
-  bool run_length_applies(int x, int y0) {
-    for (int y = y0; y < y0 + 4; ++y) {
-      if (flag(x, y) & (kSignificant | kVisited)) return false;
-      const Neighbours n = count(x, y);
-      if (n.h + n.v + n.d) return false;
-    }
-    return true;
-  }
-
-  int w_, h_, stride_;
-  BandOrientation orientation_;
+  int w_, h_;
+  ColumnGrid grid_;
+  const t1::ZeroCodingTable& zc_;
   t1::BlockStyle style_;
-  std::span<std::int32_t> out_;
-  std::vector<std::uint8_t> flags_;
+  std::int32_t* out_;
   Contexts cx_{};
   MqDecoder mq_;
   RawDecoder raw_;

@@ -6,7 +6,7 @@
 
 #include "block_loading_simd.h"
 #include "codec/t1/dead_zone.h"
-#include "neighbourhood.h"
+#include "codec/t1/stripe_columns.h"
 
 // The scalar tails repeat the vector arithmetic operation for operation (IEEE single precision,
 // truncating conversions), so a coefficient gets the same bits whichever lane or tail codes it.

@@ -5,7 +5,7 @@
 namespace codec::t1 {
 
 // A code-block's working state as the coding passes see it; owns nothing.
-// - `columns`: the stripe-column words of neighbourhood.h, stripe by stripe, `column_stride`
+// - `columns`: the stripe-column words of codec/t1/stripe_columns.h, stripe by stripe, `column_stride`
 //   (width + 2) words apart, pointing at stripe 0's column 0; a border column on either side and a
 //   border stripe above and below take the neighbour updates of the block's edges.
 // - `magnitude` and `sign` (kNeg or 0), per coefficient row by row, `stride` (width + 2) apart,

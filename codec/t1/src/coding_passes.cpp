@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "distortion.h"
-#include "neighbourhood.h"
+#include "codec/t1/stripe_columns.h"
 
 namespace codec::t1 {
 

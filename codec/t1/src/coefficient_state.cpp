@@ -6,7 +6,7 @@
 
 #include "block_loading_simd.h"
 #include "codec/t1/dead_zone.h"
-#include "neighbourhood.h"
+#include "codec/t1/stripe_columns.h"
 
 namespace codec::t1 {
 

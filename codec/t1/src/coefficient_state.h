@@ -48,7 +48,7 @@ class CoefficientState {
   int width_;
   int height_;
   std::ptrdiff_t stride_;
-  std::vector<std::uint32_t> columns_;  // stripe column words (neighbourhood.h), bordered
+  std::vector<std::uint32_t> columns_;  // stripe column words (codec/t1/stripe_columns.h), bordered
   std::vector<std::uint16_t> signs_;    // kNeg or 0 per coefficient
   std::vector<std::uint32_t> magnitude_;
   std::vector<std::uint32_t> fine_;  // empty when no fractions were given
