@@ -110,7 +110,6 @@ class RawDecoder {
   int bits_left_ = 0;
 };
 
-
 inline void MqDecoder::start(std::span<const std::uint8_t> segment) {
   // INITDEC (Figure C.20).
   data_ = segment;
@@ -158,8 +157,6 @@ inline int RawDecoder::bit() {
   --bits_left_;
   return (byte_ >> bits_left_) & 1;
 }
-
-
 
 // Context labels of T.800 Annex D: 0-8 zero coding (Table D.1), 9-13 sign (Table D.3), 14-16
 // magnitude refinement (Table D.4), 17 run-length, 18 UNIFORM (D.3.4).
@@ -400,14 +397,13 @@ class BlockDecoder {
   RawDecoder raw_;
 };
 
-
 inline void decode_code_block(const BlockCodewords& block, int width, int height, BandOrientation orientation,
-                       const t1::BlockStyle& style, std::span<std::int32_t> out) {
+                              const t1::BlockStyle& style, std::span<std::int32_t> out) {
   std::fill(out.begin(), out.end(), 0);
   if (block.passes <= 0 || width <= 0 || height <= 0) return;
   if (block.top_plane > kMaxTopPlane)
     throw std::runtime_error("a code-block has " + std::to_string(block.top_plane + 1) +
-                      " magnitude bit-planes; this decoder handles at most " + std::to_string(kMaxTopPlane + 1));
+                             " magnitude bit-planes; this decoder handles at most " + std::to_string(kMaxTopPlane + 1));
   BlockDecoder decoder(width, height, orientation, style, out);
   decoder.run(block);
 }

@@ -66,9 +66,8 @@ std::vector<std::int32_t> random_coefficients(int w, int h, int planes, std::mt1
 // The segments a packet header would announce for the first `passes` passes of `enc`.
 std::vector<Segment> segments_of(const codec::t1::EncodedBlock& enc, const BlockStyle& style, int passes) {
   std::vector<Segment> segments;
-  const auto pieces = codec::t2::split_into_segments(style, 0, passes, [&](int pass) {
-    return enc.passes[static_cast<std::size_t>(pass)].length;
-  });
+  const auto pieces = codec::t2::split_into_segments(
+      style, 0, passes, [&](int pass) { return enc.passes[static_cast<std::size_t>(pass)].length; });
   for (const auto& p : pieces) segments.push_back(Segment{p.bytes, p.passes});
   return segments;
 }

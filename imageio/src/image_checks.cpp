@@ -29,8 +29,9 @@ void check_integer_samples(const std::string& path, const Image& image) {
   const long hi = image.is_signed ? (1L << (bits - 1)) - 1 : (1L << bits) - 1;
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
     const float v = image.pixels[i];
-    // The range test comes first so NaN and infinities fail it too.
-    if (!(v >= float(lo) && v <= float(hi)) || std::floor(v) != v) {
+    // The range test comes first so NaN and infinities fail it too; within the range (|v| < 2^16)
+    // the conversion to long is exact for integers and drops the fraction of any other value.
+    if (!(v >= float(lo) && v <= float(hi)) || static_cast<float>(static_cast<long>(v)) != v) {
       throw IoError(path, "sample " + std::to_string(i) + " has value " + std::to_string(v) + ", not an integer in " +
                               std::to_string(lo) + ".." + std::to_string(hi) + " (" + std::to_string(bits) + "-bit " +
                               (image.is_signed ? "signed" : "unsigned") + ")");

@@ -80,12 +80,7 @@ ColumnGrid clear_column_grid(int width, int height) {
 class BlockDecoder {
  public:
   BlockDecoder(int w, int h, BandOrientation o, const t1::BlockStyle& style, std::span<std::int32_t> out)
-      : w_(w),
-        h_(h),
-        grid_(clear_column_grid(w, h)),
-        zc_(zero_coding_table(o)),
-        style_(style),
-        out_(out.data()) {
+      : w_(w), h_(h), grid_(clear_column_grid(w, h)), zc_(zero_coding_table(o)), style_(style), out_(out.data()) {
     reset(cx_);
   }
 
@@ -95,7 +90,7 @@ class BlockDecoder {
     bool raw = false;
     for (int k = 0; k < block.passes; ++k) {
       const int plane = block.top_plane - (k + 2) / 3;
-      if (plane < 0) break;  // more passes than bit-planes: a malformed header; stop here
+      if (plane < 0) break;                       // more passes than bit-planes: a malformed header; stop here
       const int type = k == 0 ? 2 : (k - 1) % 3;  // 0 significance, 1 refinement, 2 cleanup
       if (passes_left_in_segment == 0) {
         if (segment >= block.segments.size()) break;

@@ -83,7 +83,6 @@ inline void make_significant(std::uint32_t* w, std::ptrdiff_t stride, int r, uns
 // A coefficient's sign as the block loader records it, one 16-bit word per coefficient.
 inline constexpr std::uint16_t kNeg = 1u << 15;
 
-
 // The 19 context labels of T.800 Annex D: 0-8 zero coding (Table D.1), 9-13 sign coding
 // (Table D.3), 14-16 magnitude refinement (Table D.4), then run-length and UNIFORM (D.3.4).
 inline constexpr int kRefineFirstQuiet = 14;  // first refinement, no significant neighbour
