@@ -10,12 +10,14 @@
 #include <stdexcept>
 #include <vector>
 #include <memory>
+#include <span>
 #include <string>
 
 #include "codec/decoder/decoder.h"
 #include "dwt_gpu/gpu_backend.h"
 #include "imageio/atomic_write.h"
 #include "imageio/error.h"
+#include "imageio/pnm.h"
 #include "imageio/write.h"
 #include "base/one_line.h"
 #include "file_names.h"
@@ -54,6 +56,14 @@ void write_other(const std::string& path, const codec::DecodedImage& img) {
       throw std::runtime_error("components of different precisions can only be written as PGX");
   }
   if (c0.precision > 16) throw std::runtime_error("samples of more than 16 bits can only be written as PGX");
+  const std::string ext = cli::lower_extension(path);
+  if ((ext == ".pgm" || ext == ".ppm" || ext == ".pnm") && (channels == 1 || channels == 3) && !c0.is_signed) {
+    // Straight from the decoder's integer planes, without a float image in between.
+    std::vector<std::span<const std::int32_t>> planes;
+    for (const auto& c : img.components) planes.emplace_back(c.samples);
+    imageio::write_pnm_planes(path, c0.width, c0.height, c0.precision, planes);
+    return;
+  }
   imageio::Image out;
   out.width = c0.width;
   out.height = c0.height;

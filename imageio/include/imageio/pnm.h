@@ -57,4 +57,10 @@ PackedImage read_pnm_packed(const std::string& path);
 // Atomic: on failure no file (and no partial file) is left at `path`.
 void write_pnm(const std::string& path, const Image& image);
 
+// Writes 1 (P5) or 3 (P6) integer planes of width * height samples each, row by row, interleaved
+// into the file, with maxval 2^bits - 1 (bits 1..16) and no conversion to floats (a decoder's
+// output, written as it is). A sample outside 0..maxval is an IoError naming it.
+void write_pnm_planes(const std::string& path, int width, int height, int bits,
+                      std::span<const std::span<const std::int32_t>> planes);
+
 }  // namespace imageio
