@@ -4,30 +4,15 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
-#include <new>
 #include <span>
 
 #include "buffer_layout.h"
+#include "library_error.h"
 #include "codec/decoder/decoder.h"
 #include "dwt_gpu/gpu_backend.h"
 
 namespace gpuj2k {
 namespace {
-
-// Runs `work`, turning every failure into Error (one line, the cause's own message, after
-// `prefix` when there is one).
-template <class Work>
-auto guarded(const std::string& prefix, Work&& work) -> decltype(work()) {
-  try {
-    return work();
-  } catch (const Error&) {
-    throw;
-  } catch (const std::bad_alloc&) {
-    throw Error(prefix + "out of memory");
-  } catch (const std::exception& e) {
-    throw Error(prefix + e.what());
-  }
-}
 
 std::span<const std::uint8_t> bytes_of(const void* data, std::size_t size) {
   if (data == nullptr && size > 0) throw Error("stream data is null");
@@ -175,7 +160,7 @@ std::vector<std::uint8_t> read_whole_file(const std::string& path) {
 }  // namespace
 
 ImageInfo read_info(const void* data, std::size_t size, const DecodeOptions& options) {
-  return guarded("", [&] {
+  return detail::as_library_error("", [&] {
     const codec::DecodedImage header = codec::read_header(bytes_of(data, size), to_codec(options));
     ImageInfo out;
     out.x0 = header.x0;
@@ -189,17 +174,17 @@ ImageInfo read_info(const void* data, std::size_t size, const DecodeOptions& opt
 }
 
 DecodedImage decode(const void* data, std::size_t size, const DecodeOptions& options) {
-  return guarded("", [&] { return to_public(run_decode(bytes_of(data, size), options)); });
+  return detail::as_library_error("", [&] { return to_public(run_decode(bytes_of(data, size), options)); });
 }
 
 DecodedImage decode_file(const std::string& path, const DecodeOptions& options) {
   const std::vector<std::uint8_t> bytes = read_whole_file(path);
-  return guarded(path + ": ", [&] { return to_public(run_decode(bytes, options)); });
+  return detail::as_library_error(path + ": ", [&] { return to_public(run_decode(bytes, options)); });
 }
 
 std::vector<std::string> decode_into(const void* data, std::size_t size, const OutputView& out,
                                      const DecodeOptions& options) {
-  return guarded("", [&] {
+  return detail::as_library_error("", [&] {
     if (out.data == nullptr) throw Error("output data is null");
     const detail::BufferLayout layout = detail::check_buffer(
         {out.width, out.height, out.components, out.type, out.layout, out.row_stride, out.plane_stride, out.size_bytes},

@@ -6,9 +6,9 @@
 #include <cstring>
 #include <functional>
 #include <limits>
-#include <new>
 
 #include "buffer_layout.h"
+#include "library_error.h"
 #include "codec/encoder/encoder.h"
 #include "codec/encoder/engine.h"
 #include "codec/structure/error.h"
@@ -208,20 +208,16 @@ void fill_report(const codec::EncodeReport& r, const codec::SourceImage& image, 
   out.recoded_blocks = r.recoded_blocks;
 }
 
-// Runs `work`, turning every failure into Error (one line, the cause's own message).
+// Runs `work`, turning every failure into Error; a cancelled progress callback into "encode cancelled".
 template <class Work>
 auto guarded(Work&& work) -> decltype(work()) {
-  try {
-    return work();
-  } catch (const Error&) {
-    throw;
-  } catch (const Cancelled&) {
-    throw Error("encode cancelled");
-  } catch (const std::bad_alloc&) {
-    throw Error("out of memory");
-  } catch (const std::exception& e) {
-    throw Error(e.what());
-  }
+  return detail::as_library_error("", [&] {
+    try {
+      return work();
+    } catch (const Cancelled&) {
+      throw Error("encode cancelled");
+    }
+  });
 }
 
 codec::FileFormat file_format(Format format) {

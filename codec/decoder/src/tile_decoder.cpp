@@ -187,7 +187,8 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
   pool.parallel_for(tasks.size(), [&](std::size_t k) {
     const BlockTask& t = tasks[k];
     const int w = static_cast<int>(t.block->rect.width()), h = static_cast<int>(t.block->rect.height());
-    std::vector<std::int32_t> block(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
+    thread_local std::vector<std::int32_t> block;  // one per worker, reused from block to block
+    block.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
     decode_block(*t.state, t.mb, w, h, t.orientation, params.coding, block);
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
