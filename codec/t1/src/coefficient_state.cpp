@@ -12,20 +12,48 @@ namespace codec::t1 {
 
 namespace {
 constexpr int kFractionBits = 8;  // as given: 1/256ths
+
+// The calling thread's arrays behind its CoefficientState.
+struct Workspace {
+  std::vector<std::uint32_t> columns, magnitude, fine;
+  std::vector<std::uint16_t> signs;
+};
+
+Workspace& workspace() {
+  thread_local Workspace w;
+  return w;
+}
+
+// `v` sized to n elements (capacity kept from earlier blocks), contents left as they are.
+template <class T>
+std::span<T> sized(std::vector<T>& v, std::size_t n) {
+  if (v.size() < n) v.resize(n);
+  return {v.data(), n};
+}
 }  // namespace
 
 CoefficientState::CoefficientState(int width, int height)
-    : width_(width),
-      height_(height),
-      stride_(width + 2),
-      columns_(static_cast<std::size_t>(stride_ * ((height + 3) / 4 + 2)), 0),
-      signs_(static_cast<std::size_t>(stride_ * (height + 2)), 0),
-      magnitude_(signs_.size(), 0) {}
+    : width_(width), height_(height), stride_(width + 2) {
+  Workspace& w = workspace();
+  const auto coefficients = static_cast<std::size_t>(stride_ * (height + 2));
+  columns_ = sized(w.columns, static_cast<std::size_t>(stride_ * ((height + 3) / 4 + 2)));
+  std::fill(columns_.begin(), columns_.end(), 0u);
+  signs_ = sized(w.signs, coefficients);
+  magnitude_ = sized(w.magnitude, coefficients);
+}
+
+template <class F>
+void CoefficientState::for_each_coefficient(F&& f) const {
+  for (int y = 0; y < height_; ++y) {
+    const auto row = static_cast<std::size_t>((y + 1) * stride_ + 1);
+    for (int x = 0; x < width_; ++x) f(row + static_cast<std::size_t>(x));
+  }
+}
 
 template <class Sample>
 void CoefficientState::load(Sample&& sample, bool with_fractions) {
   // The fractions wait in fine_ until the bit-planes, and so the fixed point, are known.
-  if (with_fractions) fine_.assign(magnitude_.size(), 0);
+  if (with_fractions) fine_ = sized(workspace().fine, magnitude_.size());
   std::uint32_t any_bits = 0;
   for (int y = 0; y < height_; ++y) {
     const auto row = static_cast<std::size_t>((y + 1) * stride_ + 1);
@@ -45,22 +73,21 @@ void CoefficientState::load(Sample&& sample, bool with_fractions) {
   bit_planes_ = static_cast<int>(std::bit_width(any_bits));
 
   if (!with_fractions) {
-    for (const std::uint32_t m : magnitude_) energy_ += static_cast<double>(m) * static_cast<double>(m);
+    for_each_coefficient([&](std::size_t i) {
+      const auto m = static_cast<double>(magnitude_[i]);
+      energy_ += m * m;
+    });
     return;
   }
   // As many fraction bits as keep the fixed-point magnitude below 2^31, the range the distortion
   // arithmetic is proven for (distortion.h); all 8 unless the block uses more than 23 planes.
   fine_bits_ = std::clamp(31 - bit_planes_, 0, kFractionBits);
   const double unit = std::ldexp(1.0, -fine_bits_);
-  for (int y = 0; y < height_; ++y) {
-    const auto row = static_cast<std::size_t>((y + 1) * stride_ + 1);
-    for (int x = 0; x < width_; ++x) {
-      const std::size_t i = row + static_cast<std::size_t>(x);
-      fine_[i] = magnitude_[i] << fine_bits_ | fine_[i] >> (kFractionBits - fine_bits_);
-      const double u = static_cast<double>(fine_[i]) * unit;
-      energy_ += u * u;
-    }
-  }
+  for_each_coefficient([&](std::size_t i) {
+    fine_[i] = magnitude_[i] << fine_bits_ | fine_[i] >> (kFractionBits - fine_bits_);
+    const double u = static_cast<double>(fine_[i]) * unit;
+    energy_ += u * u;
+  });
 }
 
 CoefficientState::CoefficientState(std::span<const std::int32_t> coefficients, int width, int height,
@@ -116,7 +143,7 @@ CoefficientState::CoefficientState(const FloatBlock& block, const FloatBlockPlan
   const auto w = static_cast<std::size_t>(width_);
   bit_planes_ = planes.bit_planes;
   fine_bits_ = planes.fine_bits;
-  fine_.assign(magnitude_.size(), 0);
+  fine_ = sized(workspace().fine, magnitude_.size());
   double sum = 0;
   for (int y = 0; y < height_; ++y) {
     const auto i = static_cast<std::size_t>((y + 1) * stride_ + 1);

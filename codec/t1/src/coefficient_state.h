@@ -18,9 +18,12 @@ FloatBlockPlanes float_block_planes(const FloatBlock& block);
 // The block's energy as CoefficientState(block).energy() gives it, without loading the block.
 double float_block_energy(const FloatBlock& block, const FloatBlockPlanes& planes);
 
-// Owns a code-block's working arrays (see BlockView): magnitudes and signs, the stripe column
-// words (all clear to begin with) and, when the coefficients' fractions are given, the fixed-point
-// magnitudes distortion is measured on.
+// A code-block's working arrays (see BlockView): magnitudes and signs, the stripe column words (all
+// clear to begin with) and, when the coefficients' fractions are given, the fixed-point magnitudes
+// distortion is measured on. The arrays are the calling thread's, reused from block to block (a
+// 64x64 block's are some 48 KB, which allocating and clearing per block cost a few percent of
+// tier-1); so a thread holds one CoefficientState at a time. Only the column words are cleared:
+// every coefficient's magnitude, sign and fixed-point value is written by the load.
 class CoefficientState {
  public:
   // `fractions`: empty, or one per coefficient (row by row like `coefficients`): the part of
@@ -45,13 +48,17 @@ class CoefficientState {
   template <class Sample>
   void load(Sample&& sample, bool with_fractions);
 
+  // Calls f(i) for the index of every coefficient in the per-coefficient arrays, row by row.
+  template <class F>
+  void for_each_coefficient(F&& f) const;
+
   int width_;
   int height_;
   std::ptrdiff_t stride_;
-  std::vector<std::uint32_t> columns_;  // stripe column words (codec/t1/stripe_columns.h), bordered
-  std::vector<std::uint16_t> signs_;    // kNeg or 0 per coefficient
-  std::vector<std::uint32_t> magnitude_;
-  std::vector<std::uint32_t> fine_;  // empty when no fractions were given
+  std::span<std::uint32_t> columns_;  // stripe column words (codec/t1/stripe_columns.h), bordered
+  std::span<std::uint16_t> signs_;    // kNeg or 0 per coefficient; a border column each side, unused
+  std::span<std::uint32_t> magnitude_;
+  std::span<std::uint32_t> fine_;  // empty when no fractions were given
   int fine_bits_ = 0;
   int bit_planes_ = 0;
   double energy_ = 0;
