@@ -4,6 +4,7 @@
 #include <cstring>
 #include <vector>
 
+#include "lifting_simd.h"
 #include "row_lifting.h"
 #include "strip_lifting.h"
 
@@ -96,8 +97,23 @@ void run_rows(const Layout& L, const AxisPass& p, dwt::PlaneSpan<T> plane, base:
         const int src = map[static_cast<std::size_t>(position)];
         return src < 0 ? T(0) : row[src];
       };
-      for (int j = 0; j < low_size; ++j) sig.low[j] = fetch(first_low + 2 * j);
-      for (int j = 0; j < high_size; ++j) sig.high[j] = fetch(1 - first_low + 2 * j);
+      if (inverse) {
+        for (int j = 0; j < low_size; ++j) sig.low[j] = fetch(first_low + 2 * j);
+        for (int j = 0; j < high_size; ++j) sig.high[j] = fetch(1 - first_low + 2 * j);
+      } else {
+        // Pair j holds extended positions 2j and 2j + 1 (low[j] and high[j] in some order); where
+        // both lie inside the row, at samples 2j - pad and 2j + 1 - pad, one interleaved load splits
+        // them. The pairs before and after, in the extension, go through the map.
+        const int pairs = std::min(low_size, high_size);
+        const int j0 = std::min(pairs, (L.pad + 1) / 2);
+        const int j1 = std::max(j0, std::min(pairs, (L.n + L.pad - 2) / 2 + 1));
+        for (int j = 0; j < j0; ++j) sig.low[j] = fetch(first_low + 2 * j), sig.high[j] = fetch(1 - first_low + 2 * j);
+        for (int j = j1; j < low_size; ++j) sig.low[j] = fetch(first_low + 2 * j);
+        for (int j = j1; j < high_size; ++j) sig.high[j] = fetch(1 - first_low + 2 * j);
+        T* even = first_low == 0 ? sig.low : sig.high;
+        T* odd = first_low == 0 ? sig.high : sig.low;
+        simd::deinterleave(row + 2 * j0 - L.pad, even + j0, odd + j0, static_cast<std::size_t>(j1 - j0));
+      }
       if (inverse) {
         lift_inverse(p.kernel, sig);
         for (int e = 0; e < L.n; ++e) {

@@ -84,6 +84,26 @@ void Update53(std::int32_t* HWY_RESTRICT t, const std::int32_t* HWY_RESTRICT l, 
   }
 }
 
+template <class T>
+void DeinterleaveImpl(const T* HWY_RESTRICT src, T* HWY_RESTRICT even, T* HWY_RESTRICT odd, std::size_t n) {
+  const hn::ScalableTag<T> d;
+  const std::size_t N = hn::Lanes(d);
+  std::size_t j = 0;
+  for (; j + N <= n; j += N) {
+    hn::Vec<decltype(d)> e, o;
+    hn::LoadInterleaved2(d, src + 2 * j, e, o);
+    hn::StoreU(e, d, even + j);
+    hn::StoreU(o, d, odd + j);
+  }
+  for (; j < n; ++j) even[j] = src[2 * j], odd[j] = src[2 * j + 1];
+}
+void DeinterleaveFloat(const float* src, float* even, float* odd, std::size_t n) {
+  DeinterleaveImpl(src, even, odd, n);
+}
+void DeinterleaveInt(const std::int32_t* src, std::int32_t* even, std::int32_t* odd, std::size_t n) {
+  DeinterleaveImpl(src, even, odd, n);
+}
+
 std::int64_t CurrentTarget() { return HWY_TARGET; }
 
 }  // namespace HWY_NAMESPACE
@@ -97,6 +117,8 @@ HWY_EXPORT(LiftGeneral);
 HWY_EXPORT(Scale);
 HWY_EXPORT(Predict53);
 HWY_EXPORT(Update53);
+HWY_EXPORT(DeinterleaveFloat);
+HWY_EXPORT(DeinterleaveInt);
 HWY_EXPORT(CurrentTarget);
 
 void lift_symmetric(float* t, const float* l, const float* r, float c, std::size_t n) {
@@ -111,6 +133,12 @@ void predict53(std::int32_t* t, const std::int32_t* l, const std::int32_t* r, st
 }
 void update53(std::int32_t* t, const std::int32_t* l, const std::int32_t* r, std::size_t n, bool inverse) {
   HWY_DYNAMIC_DISPATCH(Update53)(t, l, r, n, inverse);
+}
+void deinterleave(const float* src, float* even, float* odd, std::size_t n) {
+  HWY_DYNAMIC_DISPATCH(DeinterleaveFloat)(src, even, odd, n);
+}
+void deinterleave(const std::int32_t* src, std::int32_t* even, std::int32_t* odd, std::size_t n) {
+  HWY_DYNAMIC_DISPATCH(DeinterleaveInt)(src, even, odd, n);
 }
 const char* target_name() { return hwy::TargetName(HWY_DYNAMIC_DISPATCH(CurrentTarget)()); }
 

@@ -18,6 +18,10 @@ void scale(float* t, float s, std::size_t n);
 void predict53(std::int32_t* t, const std::int32_t* l, const std::int32_t* r, std::size_t n, bool inverse);
 void update53(std::int32_t* t, const std::int32_t* l, const std::int32_t* r, std::size_t n, bool inverse);
 
+// Splits n interleaved pairs: even[j] = src[2j], odd[j] = src[2j + 1].
+void deinterleave(const float* src, float* even, float* odd, std::size_t n);
+void deinterleave(const std::int32_t* src, std::int32_t* even, std::int32_t* odd, std::size_t n);
+
 const char* target_name();  // e.g. "AVX2"
 
 }  // namespace dwt_cpu::simd

@@ -32,8 +32,7 @@ std::span<T> sized(std::vector<T>& v, std::size_t n) {
 }
 }  // namespace
 
-CoefficientState::CoefficientState(int width, int height)
-    : width_(width), height_(height), stride_(width + 2) {
+CoefficientState::CoefficientState(int width, int height) : width_(width), height_(height), stride_(width + 2) {
   Workspace& w = workspace();
   const auto coefficients = static_cast<std::size_t>(stride_ * (height + 2));
   columns_ = sized(w.columns, static_cast<std::size_t>(stride_ * ((height + 3) / 4 + 2)));
