@@ -10,6 +10,7 @@ namespace codec::t1 {
 //   border stripe above and below take the neighbour updates of the block's edges.
 // - `magnitude` and `sign` (kNeg or 0), per coefficient row by row, `stride` (width + 2) apart,
 //   pointing at coefficient (0, 0).
+// - `column_magnitudes`, per stripe column (see below).
 struct BlockView {
   std::uint32_t* columns = nullptr;
   std::ptrdiff_t column_stride = 0;
@@ -25,6 +26,9 @@ struct BlockView {
   // fine_bits is 0.
   const std::uint32_t* fine = nullptr;
   int fine_bits = 0;
+  // Per stripe column (laid out as `columns`): the OR of its rows' magnitudes, so whether any of
+  // them has a bit at a plane takes one load.
+  const std::uint32_t* column_magnitudes = nullptr;
 
   std::ptrdiff_t index(int x, int y) const { return static_cast<std::ptrdiff_t>(y) * stride + x; }
 };

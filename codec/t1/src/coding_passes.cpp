@@ -166,40 +166,57 @@ template <bool kMeasure>
   MqSymbols s{mq, cx};
   const PlaneDistortion d(plane + v.fine_bits);
   DistortionSum gain(plane + v.fine_bits, v.fine_bits);
-  for_each_column(v, [&](std::uint32_t* w, std::ptrdiff_t top, int rows) {
-    int r = 0;
-    if (rows == 4) {
-      const std::uint32_t word = *w;
-      // Nothing to code when each of the four is significant or was coded by the significance
-      // pass; only the marks need clearing.
-      if ((column::significant_rows(word) | (word >> 24)) == 0xFu) {
-        *w = word & ~column::kVisitedAll;
-        return;
-      }
-      // Run-length mode: none of the four significant or visited, and all with the all-zero
-      // neighbourhood (zero-coding context 0 in every orientation).
-      if ((word & (column::kWindow | column::kVisitedAll)) == 0) {
-        r = first_one_in_column(v, top, plane);
-        if (r == 4) {
-          mq.encode(0, cx[kRunLengthContext]);
-          return;
+  for (int y0 = 0; y0 < v.height; y0 += 4) {
+    const int rows = std::min(4, v.height - y0);
+    std::uint32_t* words = v.columns + (y0 / 4) * v.column_stride;
+    const std::uint32_t* magnitudes = v.column_magnitudes + (y0 / 4) * v.column_stride;
+    const std::ptrdiff_t stripe_top = v.index(0, y0);
+    // Run-length mode (a full column with none of the four significant or visited, all with the
+    // all-zero neighbourhood: zero-coding context 0 in every orientation) with no 1 at this plane:
+    // one symbol 0. Coding such a column changes nothing, so a run of them is found first and coded
+    // in one call.
+    auto quiet = [&](int x) {
+      return ((words[x] & (column::kWindow | column::kVisitedAll)) | (magnitudes[x] >> plane)) == 0;
+    };
+    for (int x = 0; x < v.width; ++x) {
+      std::uint32_t* w = words + x;
+      const std::ptrdiff_t top = stripe_top + x;
+      int r = 0;
+      if (rows == 4) {
+        if (quiet(x)) {
+          int run = 1;
+          while (x + run < v.width && quiet(x + run)) ++run;
+          mq.encode_zeros(cx[kRunLengthContext], run);
+          x += run - 1;
+          continue;
         }
-        mq.encode(1, cx[kRunLengthContext]);
-        mq.encode(r >> 1, cx[kUniformContext]);
-        mq.encode(r & 1, cx[kUniformContext]);
-        add_gain<kMeasure>(gain, become_significant<kMeasure>(v, w, top + r * v.stride, r, d, s));
-        ++r;
+        const std::uint32_t word = *w;
+        // Nothing to code when each of the four is significant or was coded by the significance
+        // pass; only the marks need clearing.
+        if ((column::significant_rows(word) | (word >> 24)) == 0xFu) {
+          *w = word & ~column::kVisitedAll;
+          continue;
+        }
+        // Run-length mode with a 1 in the column: the row of the first one.
+        if ((word & (column::kWindow | column::kVisitedAll)) == 0) {
+          r = first_one_in_column(v, top, plane);
+          mq.encode(1, cx[kRunLengthContext]);
+          mq.encode(r >> 1, cx[kUniformContext]);
+          mq.encode(r & 1, cx[kUniformContext]);
+          add_gain<kMeasure>(gain, become_significant<kMeasure>(v, w, top + r * v.stride, r, d, s));
+          ++r;
+        }
       }
+      for_each_row(v, top, r, rows, [&](int row, std::ptrdiff_t i) {
+        const std::uint32_t word = *w;
+        if (word & (column::self(row) | column::visited(row))) return;
+        const int bit = bit_at(v.magnitude[i], plane);
+        mq.encode(bit, cx[zc[(word >> (3 * row)) & column::kNeighbourhood]]);
+        if (bit) add_gain<kMeasure>(gain, become_significant<kMeasure>(v, w, i, row, d, s));
+      });
+      *w &= ~column::kVisitedAll;
     }
-    for_each_row(v, top, r, rows, [&](int row, std::ptrdiff_t i) {
-      const std::uint32_t word = *w;
-      if (word & (column::self(row) | column::visited(row))) return;
-      const int bit = bit_at(v.magnitude[i], plane);
-      mq.encode(bit, cx[zc[(word >> (3 * row)) & column::kNeighbourhood]]);
-      if (bit) add_gain<kMeasure>(gain, become_significant<kMeasure>(v, w, i, row, d, s));
-    });
-    *w &= ~column::kVisitedAll;
-  });
+  }
   coder = mq;
   return gain.value();
 }

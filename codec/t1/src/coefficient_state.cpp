@@ -15,7 +15,7 @@ constexpr int kFractionBits = 8;  // as given: 1/256ths
 
 // The calling thread's arrays behind its CoefficientState.
 struct Workspace {
-  std::vector<std::uint32_t> columns, magnitude, fine;
+  std::vector<std::uint32_t> columns, magnitude, fine, column_magnitudes;
   std::vector<std::uint16_t> signs;
 };
 
@@ -154,6 +154,14 @@ CoefficientState::CoefficientState(const FloatBlock& block, const FloatBlockPlan
 
 BlockView CoefficientState::view(bool causal) {
   const std::ptrdiff_t origin = stride_ + 1;
+  column_magnitudes_ = sized(workspace().column_magnitudes, columns_.size());
+  for (int y0 = 0; y0 < height_; y0 += 4) {
+    std::uint32_t* out = column_magnitudes_.data() + origin + (y0 / 4) * stride_;
+    const std::uint32_t* row = magnitude_.data() + origin + y0 * stride_;
+    std::copy_n(row, width_, out);
+    for (int r = 1; r < 4 && y0 + r < height_; ++r)
+      for (int x = 0; x < width_; ++x) out[x] |= row[r * stride_ + x];
+  }
   const std::uint32_t* fine = fine_.empty() ? magnitude_.data() : fine_.data();
   return BlockView{columns_.data() + origin,
                    stride_,
@@ -164,7 +172,8 @@ BlockView CoefficientState::view(bool causal) {
                    stride_,
                    causal,
                    fine + origin,
-                   fine_bits_};
+                   fine_bits_,
+                   column_magnitudes_.data() + origin};
 }
 
 }  // namespace codec::t1

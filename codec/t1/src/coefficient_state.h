@@ -58,7 +58,8 @@ class CoefficientState {
   std::span<std::uint32_t> columns_;  // stripe column words (codec/t1/stripe_columns.h), bordered
   std::span<std::uint16_t> signs_;    // kNeg or 0 per coefficient; a border column each side, unused
   std::span<std::uint32_t> magnitude_;
-  std::span<std::uint32_t> fine_;  // empty when no fractions were given
+  std::span<std::uint32_t> fine_;               // empty when no fractions were given
+  std::span<std::uint32_t> column_magnitudes_;  // laid out as columns_ (BlockView::column_magnitudes)
   int fine_bits_ = 0;
   int bit_planes_ = 0;
   double energy_ = 0;

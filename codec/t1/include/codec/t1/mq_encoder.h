@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
@@ -81,6 +82,25 @@ class MqEncoder {
     a_ <<= shift;
     c_ <<= shift;
     ct_ -= shift;
+  }
+
+  // `count` zeros in context cx: the same as as many encode(0, cx), but the stretches where 0 is
+  // the MPS and A stays at or above 0x8000 (no renormalisation, no exchange: each symbol only adds
+  // Qe to C and takes it from A) are coded in one step. The run-length symbols of the empty stripe
+  // columns that fill most blocks' top bit-planes come this way.
+  void encode_zeros(Context& cx, int count) {
+    while (count > 0) {
+      if (cx.mps() == 0 && count > 2) {
+        const std::uint32_t qe = kMqTransitions[cx.packed].qe;
+        const std::uint32_t quiet = std::min((a_ - 0x8000) / qe, static_cast<std::uint32_t>(count));
+        a_ -= quiet * qe;
+        c_ += quiet * qe;  // C + A is unchanged, so C cannot outgrow its register
+        count -= static_cast<int>(quiet);
+        if (count == 0) return;
+      }
+      encode(0, cx);  // the symbol that renormalises (or an LPS)
+      --count;
+    }
   }
 
   // FLUSH (C.2.9): the shortest standard termination. A trailing 0xFF is dropped: the decoder's
