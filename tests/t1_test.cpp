@@ -114,6 +114,36 @@ TEST(MqCoder, RandomSequencesDecodeIndependentlyWithBothTerminations) {
     }
 }
 
+// encode_zeros(cx, n) codes runs of zeros in one step where it can; the codeword must be the one
+// n separate encode(0, cx) calls give, whatever the context's state and sense (zero as MPS or LPS)
+// and however runs and single symbols interleave.
+TEST(MqCoder, ZeroRunsCodeAsSingleSymbolsDo) {
+  for (std::uint32_t seed = 1; seed <= 40; ++seed) {
+    std::mt19937 rng(seed);
+    std::vector<std::uint8_t> batched, single;
+    MqEncoder by_runs(batched), by_symbols(single);
+    by_runs.start();
+    by_symbols.start();
+    std::vector<MqContext> cx_runs(3), cx_symbols(3);
+    const int skew = static_cast<int>(seed % 4);  // how often a 1 breaks the runs
+    for (int k = 0; k < 2000; ++k) {
+      const std::size_t c = rng() % 3;
+      if (static_cast<int>(rng() % 8) < skew) {
+        by_runs.encode(1, cx_runs[c]);
+        by_symbols.encode(1, cx_symbols[c]);
+        continue;
+      }
+      const int run = 1 + static_cast<int>(rng() % (seed % 5 == 0 ? 5000 : 60));
+      by_runs.encode_zeros(cx_runs[c], run);
+      for (int i = 0; i < run; ++i) by_symbols.encode(0, cx_symbols[c]);
+      ASSERT_EQ(cx_runs[c].packed, cx_symbols[c].packed) << "seed " << seed << " symbol " << k;
+    }
+    by_runs.flush();
+    by_symbols.flush();
+    EXPECT_EQ(batched, single) << "seed " << seed;
+  }
+}
+
 // The truncation length reported for a point inside a segment must let a decoder that sees only
 // that many bytes decode every symbol before the point.
 TEST(MqCoder, TruncationLengthsAreSafe) {
