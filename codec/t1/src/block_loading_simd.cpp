@@ -163,6 +163,23 @@ std::uint32_t LoadIndexRow(const std::int32_t* HWY_RESTRICT row, std::size_t n, 
   return result;
 }
 
+void OrStripeRows(const std::uint32_t* HWY_RESTRICT rows, std::ptrdiff_t stride, int rows_in_stripe, std::size_t n,
+                  std::uint32_t* HWY_RESTRICT out) {
+  const hn::ScalableTag<std::uint32_t> du;
+  const std::size_t N = hn::Lanes(du);
+  std::size_t x = 0;
+  for (; x + N <= n; x += N) {
+    auto v = hn::LoadU(du, rows + x);
+    for (int r = 1; r < rows_in_stripe; ++r) v = hn::Or(v, hn::LoadU(du, rows + r * stride + x));
+    hn::StoreU(v, du, out + x);
+  }
+  for (; x < n; ++x) {
+    std::uint32_t v = rows[x];
+    for (int r = 1; r < rows_in_stripe; ++r) v |= rows[r * stride + x];
+    out[x] = v;
+  }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace codec::t1::simd
 HWY_AFTER_NAMESPACE();
@@ -173,6 +190,7 @@ HWY_EXPORT(PeakScaledMagnitude);
 HWY_EXPORT(QuantizeRow);
 HWY_EXPORT(LoadIndexRow);
 HWY_EXPORT(FixedPointEnergyRow);
+HWY_EXPORT(OrStripeRows);
 
 float peak_scaled_magnitude(const float* row, std::size_t n, float inverse_step) {
   return HWY_DYNAMIC_DISPATCH(PeakScaledMagnitude)(row, n, inverse_step);
@@ -190,6 +208,11 @@ double fixed_point_energy_row(const float* row, std::size_t n, float inverse_ste
 std::uint32_t load_index_row(const std::int32_t* row, std::size_t n, std::uint32_t* magnitude, std::uint16_t* flags,
                              double& energy) {
   return HWY_DYNAMIC_DISPATCH(LoadIndexRow)(row, n, magnitude, flags, energy);
+}
+
+void or_stripe_rows(const std::uint32_t* rows, std::ptrdiff_t stride, int rows_in_stripe, std::size_t n,
+                    std::uint32_t* out) {
+  HWY_DYNAMIC_DISPATCH(OrStripeRows)(rows, stride, rows_in_stripe, n, out);
 }
 
 }  // namespace codec::t1::simd

@@ -28,4 +28,8 @@ double fixed_point_energy_row(const float* row, std::size_t n, float inverse_ste
 std::uint32_t load_index_row(const std::int32_t* row, std::size_t n, std::uint32_t* magnitude, std::uint16_t* flags,
                              double& energy);
 
+// out[x] = OR of rows[r * stride + x] for r < rows, x < n: a stripe's column magnitudes.
+void or_stripe_rows(const std::uint32_t* rows, std::ptrdiff_t stride, int rows_in_stripe, std::size_t n,
+                    std::uint32_t* out);
+
 }  // namespace codec::t1::simd

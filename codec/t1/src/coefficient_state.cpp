@@ -155,13 +155,9 @@ CoefficientState::CoefficientState(const FloatBlock& block, const FloatBlockPlan
 BlockView CoefficientState::view(bool causal) {
   const std::ptrdiff_t origin = stride_ + 1;
   column_magnitudes_ = sized(workspace().column_magnitudes, columns_.size());
-  for (int y0 = 0; y0 < height_; y0 += 4) {
-    std::uint32_t* out = column_magnitudes_.data() + origin + (y0 / 4) * stride_;
-    const std::uint32_t* row = magnitude_.data() + origin + y0 * stride_;
-    std::copy_n(row, width_, out);
-    for (int r = 1; r < 4 && y0 + r < height_; ++r)
-      for (int x = 0; x < width_; ++x) out[x] |= row[r * stride_ + x];
-  }
+  for (int y0 = 0; y0 < height_; y0 += 4)
+    simd::or_stripe_rows(magnitude_.data() + origin + y0 * stride_, stride_, std::min(4, height_ - y0),
+                         static_cast<std::size_t>(width_), column_magnitudes_.data() + origin + (y0 / 4) * stride_);
   const std::uint32_t* fine = fine_.empty() ? magnitude_.data() : fine_.data();
   return BlockView{columns_.data() + origin,
                    stride_,
