@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "component_transform.h"
+#include "component_transform_simd.h"
 #include "ht_rate.h"
 #include "codec/ht/ht_block_encoder.h"
 #include "codec/encoder/encoder.h"
@@ -212,9 +213,25 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
   // The component transform's three components share one geometry (make_plan checks it).
   if (mct) {
     const std::int32_t s0 = shift_of(0), s1 = shift_of(1), s2 = shift_of(2);
+    // An 8-bit RGB raster as the file held it goes through the transform straight from its bytes.
+    const imageio::PackedImage* rgb8 =
+        image.packed && image.packed->channels == 3 && image.packed->bytes_per_sample == 1 ? image.packed.get()
+                                                                                           : nullptr;
     for_row_chunks(pool, h, [&](std::size_t y0, std::size_t y1) {
-      std::vector<std::int32_t> scratch(image.packed ? 3 * w : 0);
+      std::vector<std::int32_t> scratch(image.packed && !rgb8 ? 3 * w : 0);
       for (std::size_t y = y0; y < y1; ++y) {
+        if (rgb8) {
+          const std::size_t sy = static_cast<std::size_t>(first.rect.y0 - plan.grid.image.y0) + y;
+          const std::size_t sx = static_cast<std::size_t>(first.rect.x0 - plan.grid.image.x0);
+          const std::uint8_t* pixels = rgb8->raster + sy * rgb8->row_bytes() + 3 * sx;
+          if (lossless)
+            simd::rct_forward_rgb8_row(pixels, s0, s1, s2, out.integers[0].data() + y * w,
+                                       out.integers[1].data() + y * w, out.integers[2].data() + y * w, w);
+          else
+            simd::ict_forward_rgb8_row(pixels, s0, s1, s2, out.floats[0].data() + y * w, out.floats[1].data() + y * w,
+                                       out.floats[2].data() + y * w, w);
+          continue;
+        }
         const std::int32_t *r = source_row(0, y, scratch.data()), *g = source_row(1, y, scratch.data() + w),
                            *b = source_row(2, y, scratch.data() + 2 * w);
         if (lossless) {
