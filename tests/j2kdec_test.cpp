@@ -115,9 +115,11 @@ TEST_F(J2kdecCli, TimingTableHasEveryStageAndTheyAddUpToTheSumLine) {
   // Each printed cell is rounded to 0.01 ms: the printed sum may differ by half of that per stage.
   const double sum_line = row_value(r.err, "sum of stages"), total = row_value(r.err, "total (measured)");
   EXPECT_NEAR(sum, sum_line, 0.005 * static_cast<double>(kStages.size()) + 0.005);
-  // Nothing of the run is left out of the stages but argument parsing and printing.
+  // Nothing of the run is left out of the stages but option handling and the worker threads' end:
+  // a stage missing from the sum (tier-1 or the DWT is a third of this decode or more) shows. The
+  // margin is wide because other processes on a 2-core CI machine delay those threads' ends.
   EXPECT_LE(sum_line, total + 0.01);
-  EXPECT_NEAR(sum_line, total, std::max(0.05 * total, 2.0)) << r.err;
+  EXPECT_NEAR(sum_line, total, std::max(0.2 * total, 5.0)) << r.err;
 }
 
 TEST_F(J2kdecCli, TimingJsonIsValidWithTheSameStages) {

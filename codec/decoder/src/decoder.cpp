@@ -241,9 +241,11 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
     dec::apply_jp2_channels(*jp2, options.jp2_sycc_to_srgb, image);
   }
   times.component_transform += ms_since(channels_start);
-  const auto teardown_start = Clock::now();
-  dwt.backend.reset();  // a GL context's teardown is part of what the context costs
-  times.gl_context += ms_since(teardown_start);
+  if (dwt.backend && dwt.backend->device_timings()) {
+    const auto teardown_start = Clock::now();
+    dwt.backend.reset();  // a GL context's teardown is part of what the context costs
+    times.gl_context += ms_since(teardown_start);
+  }
   if (report_out) *report_out = std::move(report);
   return image;
 }
