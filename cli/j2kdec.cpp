@@ -4,6 +4,7 @@
 // on stderr, exit 1, and no output file.
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <algorithm>
 #include <cstdio>
@@ -14,13 +15,13 @@
 #include <string>
 
 #include "codec/decoder/decoder.h"
-#include "dwt_gpu/gpu_backend.h"
 #include "imageio/atomic_write.h"
 #include "imageio/error.h"
 #include "imageio/pnm.h"
 #include "imageio/write.h"
 #include "base/one_line.h"
 #include "file_names.h"
+#include "timing.h"
 
 namespace {
 
@@ -109,6 +110,31 @@ codec::DecodeRegion region_of(const std::string& text) {
   return codec::DecodeRegion{v[0], v[1], v[0] + v[2], v[1] + v[3]};
 }
 
+// The stage report of --timing: one line per stage, or one JSON object, on stderr.
+void print_timing(const std::string& mode, const codec::DecodeReport& r, double output_ms, double measured_ms) {
+  const codec::DecodeStageTimes& t = r.times;
+  const cli::TimedStage stages[] = {{"input read", t.read},
+                                    {"header parse", t.parse},
+                                    {"setup", t.setup},
+                                    {"GL context creation", t.gl_context},
+                                    {"shader compilation", t.shader_compile},
+                                    {"tier-2", t.tier2},
+                                    {"tier-1", t.tier1},
+                                    {"dequantization", t.dequantization},
+                                    {"upload", t.upload},
+                                    {"inverse DWT compute", t.dwt},
+                                    {"download", t.download},
+                                    {"inverse MCT + DC shift", t.component_transform},
+                                    {"output", output_ms}};
+  cli::print_timing(mode, {"j2kdec", r.dwt_backend, r.dwt_reason, r.threads, stages, measured_ms, {}});
+}
+
+codec::DwtDevice device_of(const std::string& name) {
+  if (name == "gpu") return codec::DwtDevice::Gpu;
+  if (name == "auto") return codec::DwtDevice::Auto;
+  return codec::DwtDevice::Cpu;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -128,18 +154,33 @@ int main(int argc, char** argv) {
       "--region", region,
       "decode only the window X,Y,W,H of the reference grid (full-resolution coordinates, image offset included, "
       "as opj_decompress -d X,Y,X+W,Y+H)");
-  app.add_option("--dwt", dwt, "inverse 9/7 DWT on cpu or gpu (auto: cpu for now); the 5/3 runs on the CPU")
+  app.add_option("--dwt", dwt,
+                 "where the inverse 9/7 DWT runs: cpu (default), gpu (any GL context, software ones included) or auto "
+                 "(a hardware GPU where it is faster for the image size, never a software renderer, as j2kenc); the "
+                 "5/3 runs on the CPU")
       ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   app.add_option("--threads", threads, "CPU threads (0: one per hardware thread)")->check(CLI::NonNegativeNumber);
   app.add_option("--max-memory", max_memory_mib, "refuse streams that need more than this many MiB")
       ->check(CLI::PositiveNumber);
   app.add_flag("-q,--quiet", quiet, "no warnings");
+  bool verbose = false;
+  app.add_flag("-v,--verbose", verbose, "a summary line: size, components, time, where the DWT ran and why");
+  std::string timing;
+  app.add_flag("--timing{text}", timing,
+               "print the time of each stage after the decode; --timing=json for JSON on stderr");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
   const std::string ext = cli::lower_extension(output);
+  if (!timing.empty() && timing != "text" && timing != "json") {
+    std::fprintf(stderr, "j2kdec: --timing takes text or json, got \"%s\"\n", base::one_line(timing).c_str());
+    return 2;
+  }
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
+  const auto t0 = Clock::now();
   try {
     codec::DecodeOptions options;
     options.reduce = reduce;
@@ -150,15 +191,13 @@ int main(int argc, char** argv) {
       for (const long long c : numbers(components, "--components"))
         options.components.push_back(static_cast<int>(std::min(c, 1LL << 30)));
     if (!region.empty()) options.region = region_of(region);
-    std::unique_ptr<dwt_gpu::GpuBackend> gpu;
-    if (dwt == "gpu") {
-      gpu = std::make_unique<dwt_gpu::GpuBackend>();
-      options.irreversible_backend = gpu.get();
-    }
-    const codec::DecodedImage image = codec::decode_file(input, options);
+    options.dwt = device_of(dwt);
+    codec::DecodeReport report;
+    const codec::DecodedImage image = codec::decode_file(input, options, &report);
     if (!quiet)
       for (const std::string& w : image.warnings)
         std::fprintf(stderr, "j2kdec: %s: warning: %s\n", input.c_str(), base::one_line(w).c_str());
+    const auto write_start = Clock::now();
     try {
       if (ext == ".pgx")
         write_pgx(output, image);
@@ -171,6 +210,14 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "j2kdec: %s: %s\n", output.c_str(), base::one_line(e.what()).c_str());
       return 1;
     }
+    const double output_ms = since(write_start);
+    const double ms = since(t0);
+    if (!timing.empty()) print_timing(timing, report, output_ms, ms);
+    if (verbose)
+      std::fprintf(stderr, "j2kdec: %s -> %s: %lldx%lld, %zu components, %.1f ms, DWT on %s (%s)\n", input.c_str(),
+                   output.c_str(), static_cast<long long>(image.x1 - image.x0),
+                   static_cast<long long>(image.y1 - image.y0), image.components.size(), ms,
+                   report.dwt_backend.c_str(), report.dwt_reason.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "j2kdec: %s: %s\n", input.c_str(), base::one_line(e.what()).c_str());
     return 1;

@@ -19,6 +19,7 @@
 #include "number_pairs.h"
 #include "base/one_line.h"
 #include "quiet_stderr.h"
+#include "timing.h"
 
 namespace {
 
@@ -168,38 +169,22 @@ class ProgressBar {
 
 // The stage report of --timing: one line per stage, or one JSON object, on stderr.
 void print_timing(const std::string& mode, const gpuj2k::EncodeReport& r, double output_ms, double measured_ms) {
-  const std::pair<const char*, double> stages[] = {{"input read", r.read_ms},
-                                                   {"setup", r.setup_ms},
-                                                   {"GL context creation", r.gl_context_ms},
-                                                   {"shader compilation", r.shader_compile_ms},
-                                                   {"level shift + MCT", r.level_shift_ms},
-                                                   {"upload", r.upload_ms},
-                                                   {"DWT compute", r.dwt_ms},
-                                                   {"download", r.download_ms},
-                                                   {"quantization + tier-1", r.tier1_ms},
-                                                   {"rate control", r.rate_control_ms},
-                                                   {"tier-2", r.tier2_ms},
-                                                   {"output", output_ms}};
-  double sum = 0;
-  for (const auto& stage : stages) sum += stage.second;
-  if (mode == "json") {
-    std::string json = "{\"dwt\": \"";
-    for (char ch : r.dwt_backend) json += (ch == '"' || ch == '\\') ? std::string("\\") + ch : std::string(1, ch);
-    json += "\", \"dwt_reason\": \"";
-    for (char ch : r.dwt_reason) json += (ch == '"' || ch == '\\') ? std::string("\\") + ch : std::string(1, ch);
-    json += "\", \"threads\": " + std::to_string(r.threads) + ", \"stages_ms\": {";
-    for (std::size_t i = 0; i < std::size(stages); ++i)
-      json += (i ? ", \"" : "\"") + std::string(stages[i].first) + "\": " + std::to_string(stages[i].second);
-    json += "}, \"recoded_blocks\": " + std::to_string(r.recoded_blocks) + ", \"sum_ms\": " + std::to_string(sum) +
-            ", \"total_ms\": " + std::to_string(measured_ms) + "}";
-    std::fprintf(stderr, "%s\n", json.c_str());
-    return;
-  }
-  std::fprintf(stderr, "j2kenc: timing in ms, DWT on %s (%s), %d threads\n", r.dwt_backend.c_str(),
-               r.dwt_reason.c_str(), r.threads);
-  for (const auto& [name, ms] : stages) std::fprintf(stderr, "  %-22s %10.2f\n", name, ms);
-  std::fprintf(stderr, "  %-22s %10.2f\n  %-22s %10.2f\n", "sum of stages", sum, "total (measured)", measured_ms);
-  if (r.recoded_blocks > 0)
+  const cli::TimedStage stages[] = {{"input read", r.read_ms},
+                                    {"setup", r.setup_ms},
+                                    {"GL context creation", r.gl_context_ms},
+                                    {"shader compilation", r.shader_compile_ms},
+                                    {"level shift + MCT", r.level_shift_ms},
+                                    {"upload", r.upload_ms},
+                                    {"DWT compute", r.dwt_ms},
+                                    {"download", r.download_ms},
+                                    {"quantization + tier-1", r.tier1_ms},
+                                    {"rate control", r.rate_control_ms},
+                                    {"tier-2", r.tier2_ms},
+                                    {"output", output_ms}};
+  cli::TimingReport report{"j2kenc", r.dwt_backend, r.dwt_reason, r.threads, stages, measured_ms, {}};
+  report.counts.emplace_back("recoded_blocks", r.recoded_blocks);
+  cli::print_timing(mode, report);
+  if (mode != "json" && r.recoded_blocks > 0)
     std::fprintf(stderr, "  (pass skipping: %zu blocks stopped or skipped too soon were coded again)\n",
                  r.recoded_blocks);
 }

@@ -232,4 +232,45 @@ TEST(ApiDecode, ConcurrentDecodesGiveTheSameSamples) {
     for (std::size_t c = 0; c < 3; ++c) EXPECT_EQ(g.components[c].samples, expected.components[c].samples);
 }
 
+// The report mirrors EncodeReport: where the inverse DWT ran and why, the threads, and stage times
+// that are real (tier-1 and the DWT of a lossy stream take time; a CPU decode spends none on GL).
+TEST(ApiDecode, ReportNamesTheDwtAndTimesTheStages) {
+  const imageio::Image image = testimages::generate(testimages::Pattern::Mix, 96, 64, 3, 8);
+  std::vector<std::uint8_t> pixels;
+  for (float v : image.pixels) pixels.push_back(static_cast<std::uint8_t>(v));
+  gpuj2k::ImageView view;
+  view.data = pixels.data();
+  view.size_bytes = pixels.size();
+  view.width = 96;
+  view.height = 64;
+  view.components = 3;
+  gpuj2k::EncodeOptions lossy;
+  lossy.dwt = gpuj2k::DwtDevice::Cpu;
+  lossy.rates_bpp = {1.0};
+  const std::vector<std::uint8_t> j2k = gpuj2k::encode(view, lossy);
+  gpuj2k::DecodeOptions options;
+  options.threads = 2;
+  gpuj2k::DecodeReport report;
+  const gpuj2k::DecodedImage decoded = gpuj2k::decode(j2k.data(), j2k.size(), options, &report);
+  EXPECT_EQ(report.threads, 2);
+  EXPECT_EQ(report.dwt_backend.rfind("cpu lifting", 0), 0u) << report.dwt_backend;
+  EXPECT_EQ(report.dwt_reason, "asked for the CPU");
+  EXPECT_GT(report.tier1_ms, 0.0);
+  EXPECT_GT(report.dwt_ms, 0.0);
+  EXPECT_GT(report.component_transform_ms, 0.0);
+  EXPECT_EQ(report.gl_context_ms + report.shader_compile_ms + report.upload_ms + report.download_ms, 0.0);
+  EXPECT_EQ(report.read_ms, 0.0);  // from memory: nothing read
+
+  // Auto never runs on a software renderer, and decodes the CPU's samples when it keeps the CPU.
+  options.dwt = gpuj2k::DwtDevice::Auto;
+  gpuj2k::DecodeReport automatic;
+  const gpuj2k::DecodedImage again = gpuj2k::decode(j2k.data(), j2k.size(), options, &automatic);
+  EXPECT_FALSE(automatic.dwt_reason.empty());
+  if (automatic.dwt_backend.rfind("cpu", 0) == 0) {
+    for (std::size_t c = 0; c < 3; ++c) EXPECT_EQ(again.components[c].samples, decoded.components[c].samples);
+  } else {
+    EXPECT_EQ(automatic.dwt_reason.rfind("the GPU is faster here", 0), 0u) << automatic.dwt_reason;
+  }
+}
+
 }  // namespace

@@ -3,13 +3,13 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <chrono>
 #include <memory>
 #include <span>
 
 #include "buffer_layout.h"
 #include "library_error.h"
 #include "codec/decoder/decoder.h"
-#include "dwt_gpu/gpu_backend.h"
 
 namespace gpuj2k {
 namespace {
@@ -37,6 +37,9 @@ codec::DecodeOptions to_codec(const DecodeOptions& o) {
   c.max_memory = o.max_memory;
   c.threads = o.threads;
   c.jp2_sycc_to_srgb = o.sycc_to_srgb;
+  c.dwt = o.dwt == DwtDevice::Cpu   ? codec::DwtDevice::Cpu
+          : o.dwt == DwtDevice::Gpu ? codec::DwtDevice::Gpu
+                                    : codec::DwtDevice::Auto;
   return c;
 }
 
@@ -53,15 +56,31 @@ ComponentInfo info_of(const codec::DecodedComponent& c) {
   return out;
 }
 
-// The decode itself, with the inverse 9/7 on a GL context of its own when asked for.
-codec::DecodedImage run_decode(std::span<const std::uint8_t> bytes, const DecodeOptions& options) {
-  codec::DecodeOptions c = to_codec(options);
-  std::unique_ptr<dwt_gpu::GpuBackend> gpu;
-  if (options.dwt == DwtDevice::Gpu) {
-    gpu = std::make_unique<dwt_gpu::GpuBackend>(glc::Platform::Auto, true);
-    c.irreversible_backend = gpu.get();
-  }
-  return codec::decode(bytes, c);
+void fill_report(const codec::DecodeReport& r, double read_ms, DecodeReport& out) {
+  out.threads = r.threads;
+  out.dwt_backend = r.dwt_backend;
+  out.dwt_reason = r.dwt_reason;
+  out.read_ms = read_ms;
+  out.parse_ms = r.times.parse;
+  out.setup_ms = r.times.setup;
+  out.gl_context_ms = r.times.gl_context;
+  out.shader_compile_ms = r.times.shader_compile;
+  out.tier2_ms = r.times.tier2;
+  out.tier1_ms = r.times.tier1;
+  out.dequantization_ms = r.times.dequantization;
+  out.upload_ms = r.times.upload;
+  out.dwt_ms = r.times.dwt;
+  out.download_ms = r.times.download;
+  out.component_transform_ms = r.times.component_transform;
+}
+
+// The decode itself, with the inverse 9/7 where options.dwt chooses (codec/dwt_choice).
+codec::DecodedImage run_decode(std::span<const std::uint8_t> bytes, const DecodeOptions& options,
+                               DecodeReport* report, double read_ms = 0) {
+  codec::DecodeReport codec_report;
+  codec::DecodedImage image = codec::decode(bytes, to_codec(options), report ? &codec_report : nullptr);
+  if (report) fill_report(codec_report, read_ms, *report);
+  return image;
 }
 
 DecodedImage to_public(codec::DecodedImage&& image) {
@@ -173,23 +192,26 @@ ImageInfo read_info(const void* data, std::size_t size, const DecodeOptions& opt
   });
 }
 
-DecodedImage decode(const void* data, std::size_t size, const DecodeOptions& options) {
-  return detail::as_library_error("", [&] { return to_public(run_decode(bytes_of(data, size), options)); });
+DecodedImage decode(const void* data, std::size_t size, const DecodeOptions& options, DecodeReport* report) {
+  return detail::as_library_error("", [&] { return to_public(run_decode(bytes_of(data, size), options, report)); });
 }
 
-DecodedImage decode_file(const std::string& path, const DecodeOptions& options) {
+DecodedImage decode_file(const std::string& path, const DecodeOptions& options, DecodeReport* report) {
+  const auto read_start = std::chrono::steady_clock::now();
   const std::vector<std::uint8_t> bytes = read_whole_file(path);
-  return detail::as_library_error(path + ": ", [&] { return to_public(run_decode(bytes, options)); });
+  const double read_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - read_start).count();
+  return detail::as_library_error(path + ": ", [&] { return to_public(run_decode(bytes, options, report, read_ms)); });
 }
 
 std::vector<std::string> decode_into(const void* data, std::size_t size, const OutputView& out,
-                                     const DecodeOptions& options) {
+                                     const DecodeOptions& options, DecodeReport* report) {
   return detail::as_library_error("", [&] {
     if (out.data == nullptr) throw Error("output data is null");
     const detail::BufferLayout layout = detail::check_buffer(
         {out.width, out.height, out.components, out.type, out.layout, out.row_stride, out.plane_stride, out.size_bytes},
         "output buffer");
-    codec::DecodedImage image = run_decode(bytes_of(data, size), options);
+    codec::DecodedImage image = run_decode(bytes_of(data, size), options, report);
     if (static_cast<int>(image.components.size()) != out.components)
       throw Error("the image has " + std::to_string(image.components.size()) + " components, the output buffer " +
                   std::to_string(out.components));

@@ -1,11 +1,13 @@
 #include "codec/decoder/decoder.h"
 
+#include <chrono>
 #include <fstream>
 #include <iterator>
 #include <memory>
 #include <optional>
 
 #include "base/thread_pool.h"
+#include "codec/dwt_choice/dwt_choice.h"
 #include "codestream_reader.h"
 #include "dwt_cpu/cpu_backend.h"
 #include "jp2_colour.h"
@@ -15,6 +17,9 @@
 namespace codec {
 
 namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 std::int64_t reduced(std::int64_t v, int r) { return ceil_shift(v, r); }
 
@@ -122,6 +127,45 @@ void select_in_order(DecodedImage& image, const DecodeOptions& options) {
   image.components = std::move(chosen);
 }
 
+// The samples the inverse 9/7 will transform, what --dwt auto weighs: every irreversible
+// tile-component (at the kept resolution) of the tiles the window reaches, of the components
+// output or needed by the component transform. Tile-part headers may change the wavelet, so each
+// tile's own parameters are asked.
+double irreversible_samples(const dec::Codestream& cs, const Rect& window, const std::vector<bool>& selected,
+                            int reduce) {
+  double samples = 0;
+  for (const dec::TileStream& tile : cs.tiles) {
+    const Rect rect = cs.siz.grid.tile_rect(tile.index);
+    if (rect.intersect(window).empty()) continue;
+    const dec::TileParams params = dec::resolve_tile_params(cs, tile);
+    for (std::size_t c = 0; c < params.components.size() && c < selected.size(); ++c) {
+      const bool needed = selected[c] || (params.cod.mct == 1 && c < 3);
+      if (!needed || params.components[c].coding.reversible) continue;
+      const Rect tc = tile_component_rect(rect, cs.siz.components[c].dx, cs.siz.components[c].dy);
+      samples += static_cast<double>(reduced(tc.x1, reduce) - reduced(tc.x0, reduce)) *
+                 static_cast<double>(reduced(tc.y1, reduce) - reduced(tc.y0, reduce));
+    }
+  }
+  return samples;
+}
+
+// The backend of the inverse 9/7 and why: the caller's, none needed (a reversible stream makes no
+// GL context), or --dwt's choice as the encoder makes it.
+DwtChoice choose_inverse_dwt(const DecodeOptions& options, double samples, base::ThreadPool& pool) {
+  if (options.irreversible_backend) {
+    DwtChoice caller;
+    caller.name = options.irreversible_backend->name();
+    caller.reason = "the caller's backend";
+    return caller;
+  }
+  if (samples == 0)
+    return cpu_choice(std::make_unique<dwt_cpu::CpuBackend>(pool),
+                      "no irreversible tile-component: the reversible 5/3 runs on the CPU");
+  DwtChoice choice = choose_dwt(options.dwt, samples, pool);
+  if (!choice.backend) throw DecodeError(choice.reason);
+  return choice;
+}
+
 }  // namespace
 
 DecodedImage read_header(std::span<const std::uint8_t> bytes, const DecodeOptions& options) {
@@ -135,28 +179,42 @@ DecodedImage read_header(std::span<const std::uint8_t> bytes, const DecodeOption
   return image;
 }
 
-DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& options) {
+DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& options, DecodeReport* report_out) {
+  DecodeReport report;
+  DecodeStageTimes& times = report.times;
+  const auto parse_start = Clock::now();
   const OpenedStream opened = open_stream(bytes, options);
   const std::optional<dec::Jp2File>& jp2 = opened.jp2;
   const dec::Codestream& cs = opened.cs;
+  times.parse = ms_since(parse_start);
+
+  // Setup: the output image, one set of worker threads for tier-1 and the CPU DWT, and where the
+  // inverse 9/7 runs.
+  const auto setup_start = Clock::now();
   const Rect window = decoded_area(cs.siz, options);
   const std::vector<bool> selected = selected_components(cs.siz, options);
   DecodedImage image = allocate_image(cs.siz, window, selected, options);
   image.warnings = cs.warnings;
-
   double image_bytes = 0;
   for (const DecodedComponent& c : image.components) image_bytes += static_cast<double>(c.samples.size()) * 4;
-  // One set of worker threads for tier-1 and the CPU DWT.
   base::ThreadPool pool(options.threads);
+  report.threads = pool.size();
   dwt_cpu::CpuBackend cpu(pool);
+  DwtChoice dwt = choose_inverse_dwt(options, irreversible_samples(cs, window, selected, options.reduce), pool);
+  report.dwt_backend = dwt.name;
+  report.dwt_reason = dwt.reason;
+  times.gl_context = dwt.gl_context_ms;
+  times.shader_compile = dwt.shader_compile_ms;
   dec::TileDecodeSetup setup;
   setup.options = &options;
   setup.pool = &pool;
   setup.reversible_backend = &cpu;
-  setup.irreversible_backend = options.irreversible_backend ? options.irreversible_backend : &cpu;
+  setup.irreversible_backend = options.irreversible_backend ? options.irreversible_backend : dwt.backend.get();
   setup.memory_budget = static_cast<std::size_t>(static_cast<double>(options.max_memory) - image_bytes);
   setup.window = window;
   setup.selected = selected;
+  setup.times = &times;
+  times.setup = ms_since(setup_start) - times.gl_context - times.shader_compile;
 
   // Tiles the window misses are neither decoded nor missed.
   std::vector<bool> seen(static_cast<std::size_t>(cs.siz.grid.tile_count()), false);
@@ -172,6 +230,7 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
   if (missing > 0)
     image.warnings.push_back(std::to_string(missing) + " of " + std::to_string(seen.size()) +
                              " tile(s) missing from the stream; their samples are 0");
+  const auto channels_start = Clock::now();
   if (!options.components.empty()) {
     select_in_order(image, options);
     if (jp2 && rewrites_channels(*jp2))
@@ -181,15 +240,26 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
   } else if (jp2) {
     dec::apply_jp2_channels(*jp2, options.jp2_sycc_to_srgb, image);
   }
+  times.component_transform += ms_since(channels_start);
+  if (dwt.backend && dwt.backend->device_timings()) {
+    const auto teardown_start = Clock::now();
+    dwt.backend.reset();  // a GL context's teardown is part of what the context costs
+    times.gl_context += ms_since(teardown_start);
+  }
+  if (report_out) *report_out = std::move(report);
   return image;
 }
 
-DecodedImage decode_file(const std::string& path, const DecodeOptions& options) {
+DecodedImage decode_file(const std::string& path, const DecodeOptions& options, DecodeReport* report) {
+  const auto read_start = Clock::now();
   std::ifstream in(path, std::ios::binary);
   if (!in) throw DecodeError("cannot open the file");
   std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw DecodeError("cannot read the file");
-  return decode(bytes, options);
+  const double read_ms = ms_since(read_start);
+  DecodedImage image = decode(bytes, options, report);
+  if (report) report->times.read = read_ms;
+  return image;
 }
 
 }  // namespace codec

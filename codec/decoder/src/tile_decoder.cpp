@@ -1,7 +1,9 @@
 #include "tile_decoder.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstring>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
@@ -19,6 +21,9 @@
 namespace codec::dec {
 
 namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 std::vector<ComponentSampling> sampling_of(const Siz& siz) {
   std::vector<ComponentSampling> s;
@@ -129,8 +134,6 @@ bool reaches(const Rect& block, int level, const Rect& window) {
   return !block.intersect(scaled).empty();
 }
 
-// Tier-1 and dequantisation of every code-block of a tile-component that reaches `window`, into
-// its plane in the Mallat layout of the (reduced) inverse DWT.
 // One code-block's tier-1 and dequantisation, with what its band says about it.
 struct BlockTask {
   const CodeBlock* block = nullptr;
@@ -143,10 +146,11 @@ struct BlockTask {
 };
 
 // Tier-1 and dequantisation of every code-block of a tile-component that reaches `window`, into
-// its plane in the Mallat layout of the (reduced) inverse DWT. The blocks write disjoint parts of
-// the plane, so they are decoded side by side on `pool`.
+// its plane in the Mallat layout of the (reduced) inverse DWT, each stage timed into `times`. The
+// blocks write disjoint parts of the plane, so they are decoded side by side on `pool`.
 void decode_blocks(const TileComponent& tc, const TileComponentParams& params, const ComponentSize& size, int reduce,
-                   const Rect& window, const std::vector<BlockState>& states, Plane& plane, base::ThreadPool& pool) {
+                   const Rect& window, const std::vector<BlockState>& states, Plane& plane, base::ThreadPool& pool,
+                   DecodeStageTimes& times) {
   const int kept_levels = tc.levels - reduce;
   const auto geometry =
       dwt::decomposition(plane.width(), plane.height(), dwt::Origin{plane.rect.x0, plane.rect.y0}, kept_levels);
@@ -183,42 +187,84 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
         }
     }
   }
-  const int roi_shift = params.roi_shift;
+  // Tier-1: each block's integers as it decoded them (magnitude with the half-step bit, and the
+  // ROI scaling) into its place in the plane, then the dequantisation over the same places: two
+  // passes, so that each stage's wall time is its own. An irreversible plane's floats hold the
+  // integers bit for bit in between (memcpy: no float value is formed from them).
+  const auto tier1_start = Clock::now();
   pool.parallel_for(tasks.size(), [&](std::size_t k) {
     const BlockTask& t = tasks[k];
     const int w = static_cast<int>(t.block->rect.width()), h = static_cast<int>(t.block->rect.height());
     thread_local std::vector<std::int32_t> block;  // one per worker, reused from block to block
     block.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
     decode_block(*t.state, t.mb, w, h, t.orientation, params.coding, block);
+    for (int y = 0; y < h; ++y) {
+      const std::int32_t* from = block.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(w);
+      const std::size_t at = static_cast<std::size_t>(t.y + y) * static_cast<std::size_t>(plane.width()) +
+                             static_cast<std::size_t>(t.x);
+      if (plane.reversible)
+        std::memcpy(plane.ints.data() + at, from, static_cast<std::size_t>(w) * sizeof(std::int32_t));
+      else
+        std::memcpy(plane.floats.data() + at, from, static_cast<std::size_t>(w) * sizeof(std::int32_t));
+    }
+  });
+  times.tier1 += ms_since(tier1_start);
+
+  const auto dequantization_start = Clock::now();
+  const int roi_shift = params.roi_shift;
+  pool.parallel_for(tasks.size(), [&](std::size_t k) {
+    const BlockTask& t = tasks[k];
+    const int w = static_cast<int>(t.block->rect.width()), h = static_cast<int>(t.block->rect.height());
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
-        std::int32_t v = block[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)];
+        const std::size_t at = static_cast<std::size_t>(t.y + y) * static_cast<std::size_t>(plane.width()) +
+                               static_cast<std::size_t>(t.x + x);
+        std::int32_t v;
+        if (plane.reversible)
+          v = plane.ints[at];
+        else
+          std::memcpy(&v, plane.floats.data() + at, sizeof v);
         if (t.roi_threshold) {
           // H.2: coefficients at or above 2^s belong to the region and were scaled up by s.
           const std::int32_t m = v < 0 ? -v : v;
           if (m >= t.roi_threshold) v = v < 0 ? -(m >> roi_shift) : (m >> roi_shift);
         }
-        const std::size_t at = static_cast<std::size_t>(t.y + y) * static_cast<std::size_t>(plane.width()) +
-                               static_cast<std::size_t>(t.x + x);
         if (plane.reversible)
           plane.ints[at] = v / 2;  // the half-step dropped: the exact integer
         else
           plane.floats[at] = static_cast<float>(v) * t.half_delta;
       }
   });
+  times.dequantization += ms_since(dequantization_start);
 }
 
+// The inverse DWT of one plane; a device backend's time is split into its stages as the encoder
+// splits the forward one (anything around the device's own stages counts as upload).
 void inverse_dwt(Plane& plane, int levels, const TileDecodeSetup& setup) {
   if (levels <= 0 || plane.rect.empty()) return;
+  DecodeStageTimes& times = *setup.times;
+  const auto start = Clock::now();
   dwt::DwtParams p;
   p.kernel = plane.reversible ? dwt::KernelId::Reversible53 : dwt::KernelId::Irreversible97;
   p.levels = levels;
   p.origin = dwt::Origin{plane.rect.x0, plane.rect.y0};
   p.levels_may_exceed_size = true;
+  dwt::DwtBackend& backend = plane.reversible ? *setup.reversible_backend : *setup.irreversible_backend;
   if (plane.reversible)
-    setup.reversible_backend->inverse(dwt::make_span(plane.ints.data(), plane.width(), plane.height()), p);
+    backend.inverse(dwt::make_span(plane.ints.data(), plane.width(), plane.height()), p);
   else
-    setup.irreversible_backend->inverse(dwt::make_span(plane.floats.data(), plane.width(), plane.height()), p);
+    backend.inverse(dwt::make_span(plane.floats.data(), plane.width(), plane.height()), p);
+  const double whole = ms_since(start);
+  if (const dwt::DeviceTimings* device = backend.device_timings()) {
+    const dwt::DeviceTimings& g = *device;
+    times.dwt += g.compute_ms;
+    times.download += g.download_ms;
+    times.upload += whole - g.compute_ms - g.download_ms - g.context_ms - g.compile_ms;
+    times.gl_context += g.context_ms;
+    times.shader_compile += g.compile_ms;
+  } else {
+    times.dwt += whole;
+  }
 }
 
 // G.2: inverse RCT (reversible) or ICT (irreversible) on components 0..2.
@@ -363,6 +409,8 @@ double tile_working_set(const Codestream& cs, const TileParams& params, int tile
 void decode_tile(const Codestream& cs, const TileStream& tile_stream, const TileDecodeSetup& setup,
                  DecodedImage& image) {
   const DecodeOptions& options = *setup.options;
+  DecodeStageTimes& times = *setup.times;
+  const auto tier2_start = Clock::now();
   const TileParams params = resolve_tile_params(cs, tile_stream);
   const int reduce = options.reduce;
   for (std::size_t c = 0; c < params.components.size(); ++c)
@@ -432,6 +480,7 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     }
   }
   trees.clear();
+  times.tier2 += ms_since(tier2_start);
 
   // Tier-1, dequantisation and the inverse DWT per tile-component, then the component transform.
   std::vector<Plane> planes(tile.components.size());
@@ -443,22 +492,26 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     plane.rect = tc.resolutions[static_cast<std::size_t>(tc.levels - reduce)].rect;
     plane.reversible = params.components[c].coding.reversible;
     const std::size_t n = static_cast<std::size_t>(plane.rect.width()) * static_cast<std::size_t>(plane.rect.height());
+    const auto clear_start = Clock::now();  // the zeros of blocks tier-1 leaves out are its own
     if (plane.reversible)
       plane.ints.assign(n, 0);
     else
       plane.floats.assign(n, 0.0f);
+    times.tier1 += ms_since(clear_start);
     decode_blocks(tc, params.components[c], size, reduce, tile_component_rect(setup.window, size.dx, size.dy), blocks,
-                  plane, *setup.pool);
+                  plane, *setup.pool, times);
     try {
       inverse_dwt(plane, tc.levels - reduce, setup);
     } catch (const dwt::DwtError& e) {
       throw DecodeError("tile " + std::to_string(tile_stream.index) + ": inverse DWT: " + e.what());
     }
   }
+  const auto transform_start = Clock::now();
   blocks.clear();
   if (params.cod.mct == 1 && needed[0]) inverse_component_transform(planes);
   for (std::size_t c = 0; c < planes.size(); ++c)
     if (setup.selected[c]) store(planes[c], cs.siz.components[c], image.components[c]);
+  times.component_transform += ms_since(transform_start);
 }
 
 }  // namespace codec::dec

@@ -20,6 +20,7 @@ struct TileDecodeSetup {
   Rect window;                                      // the part of the image wanted, on the reference grid
   std::vector<bool> selected;                       // per codestream component: output or not
   base::ThreadPool* pool = nullptr;                 // tier-1 runs its code-blocks on it
+  DecodeStageTimes* times = nullptr;                // required: each stage's time is added here
 };
 
 // Bytes one tile's structures and planes would need (an upper bound), so that a hostile header is

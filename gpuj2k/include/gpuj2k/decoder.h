@@ -40,7 +40,9 @@ struct DecodeOptions {
   // Refuse streams whose image, tiles or working buffers would need more than this many bytes.
   std::size_t max_memory = std::size_t{2} << 30;
   int threads = 0;                 // CPU threads of the inverse DWT; 0: one per hardware thread
-  DwtDevice dwt = DwtDevice::Cpu;  // Gpu: the inverse 9/7 in fragment shaders; Auto: the CPU for now
+  // Where the inverse 9/7 runs: Gpu, any GL context (fragment shaders); Auto, as the encoder chooses
+  // (a hardware GPU where it is faster for the image size, never a software renderer).
+  DwtDevice dwt = DwtDevice::Cpu;
   bool sycc_to_srgb = true;        // JP2 files: sYCC (colr 18) converted to sRGB, as a viewer shows it
 };
 
@@ -87,6 +89,17 @@ struct OutputView {
   std::size_t plane_stride = 0;  // planar: 0 is height * row stride
 };
 
+// What a decode reports besides the image (the encoder's EncodeReport, for the decoder's stages in
+// data-flow order). Threaded stages are wall times, not the workers' summed time.
+struct DecodeReport {
+  int threads = 0;
+  std::string dwt_backend;  // where the inverse 9/7 ran, with the GL renderer for the GPU
+  std::string dwt_reason;   // why there
+  // Milliseconds per stage.
+  double read_ms = 0, parse_ms = 0, setup_ms = 0, gl_context_ms = 0, shader_compile_ms = 0, tier2_ms = 0,
+         tier1_ms = 0, dequantization_ms = 0, upload_ms = 0, dwt_ms = 0, download_ms = 0, component_transform_ms = 0;
+};
+
 // What decode would give, from the headers alone (nothing is decoded): the size and components
 // after reduce, region and component selection. For a JP2 file whose palette or channel
 // definitions make its channels, the channels are those of the codestream's components (decode
@@ -94,8 +107,10 @@ struct OutputView {
 GPUJ2K_API ImageInfo read_info(const void* data, std::size_t size, const DecodeOptions& options = {});
 
 // Decodes a codestream (SOC first), or a JP2 or JPH file (signature box first), into int32 planes.
-GPUJ2K_API DecodedImage decode(const void* data, std::size_t size, const DecodeOptions& options = {});
-GPUJ2K_API DecodedImage decode_file(const std::string& path, const DecodeOptions& options = {});
+GPUJ2K_API DecodedImage decode(const void* data, std::size_t size, const DecodeOptions& options = {},
+                               DecodeReport* report = nullptr);
+GPUJ2K_API DecodedImage decode_file(const std::string& path, const DecodeOptions& options = {},
+                                    DecodeReport* report = nullptr);
 
 // Decodes into the caller's buffer. Every output component must have the view's width and height
 // (no subsampling left after decoding), there must be as many as the view's, and each sample must
@@ -103,6 +118,6 @@ GPUJ2K_API DecodedImage decode_file(const std::string& path, const DecodeOptions
 // to 16 or unsigned up to 15; Int32: any): otherwise an Error says what the image is. Returns the
 // warnings.
 GPUJ2K_API std::vector<std::string> decode_into(const void* data, std::size_t size, const OutputView& out,
-                                                const DecodeOptions& options = {});
+                                                const DecodeOptions& options = {}, DecodeReport* report = nullptr);
 
 }  // namespace gpuj2k

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "codec/dwt_choice/dwt_device.h"
+
 namespace dwt {
 class DwtBackend;
 }
@@ -32,8 +34,12 @@ struct DecodeOptions {
   int max_layers = 0;  // decode only the first max_layers quality layers; 0 = all
   // Refuse streams whose image, tile structure or working buffers would need more than this.
   std::size_t max_memory = std::size_t{2} << 30;
-  // The inverse DWT of irreversible (9/7) tile-components; null: the CPU lifting backend. The
-  // reversible 5/3 always runs on the CPU (exact integers).
+  // Where the inverse DWT of irreversible (9/7) tile-components runs, chosen as the encoder chooses
+  // (codec/dwt_choice): Cpu, Gpu (any GL context, or a DecodeError) or Auto (a hardware GPU where
+  // its calibrated costs beat the CPU for the planes to transform, never a software rasteriser).
+  // The reversible 5/3 always runs on the CPU (exact integers).
+  DwtDevice dwt = DwtDevice::Cpu;
+  // The caller's own backend for the 9/7 instead of `dwt`'s choice; null: `dwt` decides.
   dwt::DwtBackend* irreversible_backend = nullptr;
   int threads = 0;  // threads of tier-1 and the CPU DWT; 0 = one per hardware thread
   // JP2 files: turn sYCC (colr EnumCS 18) into sRGB, as a viewer shows it. The palette (pclr /
@@ -72,10 +78,41 @@ struct DecodedImage {
   int jp2_colour_space = 0;
 };
 
+// Milliseconds spent in each stage of one decode, in data-flow order (the encoder's StageTimes,
+// reversed). Threaded stages are the wall time of the stage, not the workers' summed time. GPU
+// stages are measured with the device idle before each clock read, so they are real, not estimates.
+struct DecodeStageTimes {
+  double read = 0;                 // decode_file: the file into memory
+  double parse = 0;                // JP2 boxes, main and tile-part headers
+  double setup = 0;                // the output image, worker threads, the DWT choice (less the GL times below)
+  double gl_context = 0;           // creating the GL context, and releasing it at the end (GPU DWT only)
+  double shader_compile = 0;       // compiling the DWT shader (GPU DWT only)
+  double tier2 = 0;                // each tile's structure and its packets: headers and code-block data
+  double tier1 = 0;                // code-block decoding (EBCOT or HT)
+  double dequantization = 0;       // ROI de-scaling and the quantisation step, into the DWT's planes
+  double upload = 0;               // planes to the GPU
+  double dwt = 0;                  // the inverse transform itself
+  double download = 0;             // planes back from the GPU
+  double component_transform = 0;  // inverse MCT, DC level shift and clamping, JP2 palette and colour
+  double total() const {
+    return read + parse + setup + gl_context + shader_compile + tier2 + tier1 + dequantization + upload + dwt +
+           download + component_transform;
+  }
+};
+
+// What a decode tells its caller besides the image.
+struct DecodeReport {
+  DecodeStageTimes times;
+  int threads = 0;
+  std::string dwt_backend;  // the backend of the 9/7, with its renderer for the GPU
+  std::string dwt_reason;   // why that backend (--dwt auto's decision, or what was asked)
+};
+
 // Decodes a JPEG 2000 codestream (SOC first) or a JP2 file (signature box first). Throws
 // DecodeError.
-DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& options = {});
-DecodedImage decode_file(const std::string& path, const DecodeOptions& options = {});
+DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& options = {},
+                    DecodeReport* report = nullptr);
+DecodedImage decode_file(const std::string& path, const DecodeOptions& options = {}, DecodeReport* report = nullptr);
 
 // What decode would give, from the headers alone: the image area and each output component's
 // geometry (no samples) after reduce, region and selection. A JP2 file's palette, channel

@@ -5,15 +5,13 @@
 #include <utility>
 #include <vector>
 
+#include "codec/dwt_choice/dwt_device.h"  // DwtDevice
 #include "codec/t1/block_style.h"
 
 namespace codec {
 
 enum class Progression { LRCP = 0, RLCP = 1, RPCL = 2, PCRL = 3, CPRL = 4 };
 
-// Where the irreversible 9/7 transform runs. Auto: the GPU when a GL context can be made, else the
-// CPU (with a notice). The reversible 5/3 always runs on the CPU.
-enum class DwtDevice { Cpu, Gpu, Auto };
 
 // One quality layer's target. Exactly one kind is used per encode.
 struct LayerTarget {

@@ -1,4 +1,4 @@
-#include "codec/encoder/dwt_choice.h"
+#include "codec/dwt_choice/dwt_choice.h"
 
 #include <chrono>
 #include <cstdlib>
@@ -7,11 +7,8 @@
 #include <system_error>
 #include <vector>
 
-#include "codec/structure/error.h"
 #include "dwt_cpu/cpu_backend.h"
-#include "codec/encoder/engine.h"
 #include "dwt_gpu/gpu_backend.h"
-#include "dwt_gpu/shared_gpu.h"
 #include "glcontext/context.h"
 
 namespace codec {
@@ -129,17 +126,6 @@ void store_dwt_costs(const std::filesystem::path& cache, const std::string& key,
   if (ec) std::filesystem::remove(temporary, ec);
 }
 
-namespace {
-
-// A GL context with the DWT shader compiled, made for one encode or for an engine, or why none.
-struct MadeGpu {
-  std::unique_ptr<dwt_gpu::GpuBackend> gpu;
-  std::string failure;
-  double context_ms = 0, compile_ms = 0, calibration_ms = 0;
-  std::optional<DwtCosts> costs;  // hardware: the calibration against the CPU lifting
-  bool costs_measured_now = false;
-};
-
 // --dwt gpu: any renderer, software ones included.
 MadeGpu make_any_gpu() {
   MadeGpu made;
@@ -153,7 +139,6 @@ MadeGpu make_any_gpu() {
   return made;
 }
 
-// --dwt auto: a hardware GPU only, with its costs from the cache or measured now against `cpu`.
 MadeGpu make_hardware_gpu(dwt::DwtBackend& cpu) {
   MadeGpu made;
   const auto t0 = Clock::now();
@@ -182,97 +167,68 @@ MadeGpu make_hardware_gpu(dwt::DwtBackend& cpu) {
   return made;
 }
 
+namespace {
+
 std::string gpu_name(const std::string& renderer) { return "gpu fragment shaders (" + renderer + ")"; }
+
+DwtChoice gpu_choice(GpuCandidate& candidate, std::string reason) {
+  DwtChoice choice;
+  choice.name = gpu_name(candidate.renderer);
+  choice.backend = std::move(candidate.backend);
+  choice.reason = std::move(reason);
+  return choice;
+}
 
 }  // namespace
 
-EncodeEngine::~EncodeEngine() = default;
-
-const EncodeEngine::Gpu& EncodeEngine::gpu(bool hardware, const std::function<Gpu()>& make, bool& made_now) {
-  std::lock_guard lock(mutex_);
-  std::optional<Gpu>& slot = hardware ? hardware_ : any_;
-  made_now = !slot;
-  if (!slot) slot = make();
-  return *slot;
+DwtChoice cpu_choice(std::unique_ptr<dwt::DwtBackend> cpu, std::string reason) {
+  DwtChoice choice;
+  choice.name = cpu->name();
+  choice.backend = std::move(cpu);
+  choice.reason = std::move(reason);
+  return choice;
 }
 
-DwtChoice choose_dwt(const EncodeParams& params, double samples, base::ThreadPool& pool) {
-  DwtChoice choice;
-  auto cpu = std::make_unique<dwt_cpu::CpuBackend>(pool);
-  auto use_cpu = [&](std::string reason) {
-    choice.name = cpu->name();
-    choice.backend = std::move(cpu);
-    choice.reason = std::move(reason);
-    return std::move(choice);
-  };
-  if (params.lossless) return use_cpu("lossless: the reversible 5/3 runs on the CPU");
-  if (params.dwt == DwtDevice::Cpu) return use_cpu("asked for the CPU");
-  const bool hardware = params.dwt == DwtDevice::Auto;
-
-  // The GPU: this encode's own, or the engine's (made by whichever encode asked first, which
-  // reports its costs; the others find it ready).
-  std::unique_ptr<dwt::DwtBackend> gpu;
-  std::string renderer, failure;
-  std::optional<DwtCosts> costs;
-  bool measured_now = false;
-  auto take_times = [&](const MadeGpu& made) {
-    choice.gl_context_ms = made.context_ms;
-    choice.shader_compile_ms = made.compile_ms;
-    choice.calibration_ms = made.calibration_ms;
-    measured_now = made.costs_measured_now;
-  };
-  if (params.engine) {
-    bool made_now = false;
-    const EncodeEngine::Gpu& shared = params.engine->gpu(
-        hardware,
-        [&] {
-          MadeGpu made = hardware ? make_hardware_gpu(*cpu) : make_any_gpu();
-          take_times(made);
-          EncodeEngine::Gpu kept;
-          kept.failure = made.failure;
-          kept.costs = made.costs;
-          if (made.gpu) kept.gpu = std::make_shared<dwt_gpu::SharedGpu>(std::move(made.gpu));
-          return kept;
-        },
-        made_now);
-    failure = shared.failure;
-    costs = shared.costs;
-    if (shared.gpu) {
-      renderer = shared.gpu->renderer();
-      gpu = std::make_unique<dwt_gpu::SharedGpuUser>(shared.gpu);
+DwtChoice settle_dwt(DwtDevice device, GpuCandidate candidate, std::unique_ptr<dwt::DwtBackend> cpu, double samples) {
+  if (device == DwtDevice::Cpu) return cpu_choice(std::move(cpu), "asked for the CPU");
+  if (device == DwtDevice::Gpu) {
+    if (!candidate.backend) {
+      DwtChoice none;
+      none.reason = "the GPU DWT was asked for and no GL context could be made: " + candidate.failure;
+      return none;
     }
-  } else {
-    MadeGpu made = hardware ? make_hardware_gpu(*cpu) : make_any_gpu();
-    take_times(made);
-    failure = made.failure;
-    costs = made.costs;
-    if (made.gpu) {
-      renderer = made.gpu->renderer();
-      gpu = std::move(made.gpu);
-    }
-  }
-
-  if (!hardware) {
-    if (!gpu) throw EncodeError("the GPU DWT was asked for and no GL context could be made: " + failure);
-    choice.name = gpu_name(renderer);
-    choice.backend = std::move(gpu);
-    choice.reason = "asked for the GPU";
-    return choice;
+    return gpu_choice(candidate, "asked for the GPU");
   }
   // Auto: a hardware GPU, and only where it is faster.
-  if (!gpu) return use_cpu(failure + "; the 9/7 runs on the CPU");
-  const double gpu_ms = costs->gpu_setup_ms + costs->gpu_ns_per_sample * samples * 1e-6;
-  const double cpu_ms = costs->cpu_ns_per_sample * samples * 1e-6;
-  const std::string prediction = "predicted " + fixed(gpu_ms, 1) + " ms on " + renderer + " against " +
+  if (!candidate.backend || !candidate.costs)
+    return cpu_choice(std::move(cpu), candidate.failure + "; the 9/7 runs on the CPU");
+  const DwtCosts& costs = *candidate.costs;
+  const double gpu_ms = costs.gpu_setup_ms + costs.gpu_ns_per_sample * samples * 1e-6;
+  const double cpu_ms = costs.cpu_ns_per_sample * samples * 1e-6;
+  const std::string prediction = "predicted " + fixed(gpu_ms, 1) + " ms on " + candidate.renderer + " against " +
                                  fixed(cpu_ms, 1) + " ms on the CPU (costs " +
-                                 (measured_now ? "measured now" : "from the cache") + ")";
-  if (gpu_pays_off(*costs, samples)) {
-    choice.name = gpu_name(renderer);
-    choice.backend = std::move(gpu);
-    choice.reason = "the GPU is faster here: " + prediction;
-    return choice;
+                                 (candidate.costs_measured_now ? "measured now" : "from the cache") + ")";
+  if (gpu_pays_off(costs, samples)) return gpu_choice(candidate, "the GPU is faster here: " + prediction);
+  return cpu_choice(std::move(cpu), "the CPU is faster here: " + prediction);
+}
+
+DwtChoice choose_dwt(DwtDevice device, double samples, base::ThreadPool& pool) {
+  auto cpu = std::make_unique<dwt_cpu::CpuBackend>(pool);
+  if (device == DwtDevice::Cpu) return cpu_choice(std::move(cpu), "asked for the CPU");
+  MadeGpu made = device == DwtDevice::Auto ? make_hardware_gpu(*cpu) : make_any_gpu();
+  GpuCandidate candidate;
+  candidate.failure = made.failure;
+  candidate.costs = made.costs;
+  candidate.costs_measured_now = made.costs_measured_now;
+  if (made.gpu) {
+    candidate.renderer = made.gpu->renderer();
+    candidate.backend = std::move(made.gpu);
   }
-  return use_cpu("the CPU is faster here: " + prediction);
+  DwtChoice choice = settle_dwt(device, std::move(candidate), std::move(cpu), samples);
+  choice.gl_context_ms = made.context_ms;
+  choice.shader_compile_ms = made.compile_ms;
+  choice.calibration_ms = made.calibration_ms;
+  return choice;
 }
 
 }  // namespace codec

@@ -1,0 +1,217 @@
+// j2kdec from the outside: --timing's stage table and JSON, --dwt auto's choice and its reason,
+// and the summary line.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "codec/encoder/encoder.h"
+#include "glcontext/context.h"
+#include "support/scratch_dir.h"
+#include "testimages/patterns.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ProcessResult {
+  int exit_code = 0;
+  std::string err;
+};
+
+ProcessResult run(const std::string& command, const fs::path& dir) {
+  const fs::path err = dir / "stderr.txt";
+  const int status = std::system((command + " 2>'" + err.string() + "' >/dev/null").c_str());
+  ProcessResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+  std::ifstream in(err);
+  r.err.assign(std::istreambuf_iterator<char>(in), {});
+  return r;
+}
+
+// Runs j2kdec with `args`, capturing stderr.
+ProcessResult j2kdec(const std::string& args, const fs::path& dir) {
+  return run(std::string("'") + J2KDEC_PATH + "' " + args, dir);
+}
+
+std::string file_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// The decoder's stages in data-flow order, as --timing names them.
+const std::vector<std::string> kStages = {"input read",
+                                          "header parse",
+                                          "setup",
+                                          "GL context creation",
+                                          "shader compilation",
+                                          "tier-2",
+                                          "tier-1",
+                                          "dequantization",
+                                          "upload",
+                                          "inverse DWT compute",
+                                          "download",
+                                          "inverse MCT + DC shift",
+                                          "output"};
+
+class J2kdecCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    // --dwt auto's calibration cache, kept out of the user's home.
+    ::setenv("GPUJ2K_CACHE_DIR", scratch.path().c_str(), 1);
+    stream = scratch / "mix.j2k";
+    const imageio::Image img = testimages::generate(testimages::Pattern::Mix, 320, 240, 3, 8);
+    codec::EncodeParams p;
+    p.lossless = false;
+    p.dwt = codec::DwtDevice::Cpu;
+    p.layers.push_back({codec::LayerTarget::Kind::Bytes, 320 * 240 * 1.0 / 8});
+    const auto bytes = codec::encode(codec::to_source_image(img, "mix"), p, codec::FileFormat::Codestream);
+    std::ofstream(stream, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
+                                                  static_cast<std::streamsize>(bytes.size()));
+  }
+  void TearDown() override { ::unsetenv("GPUJ2K_CACHE_DIR"); }
+
+  std::string decode_args(const std::string& output, const std::string& more) const {
+    return "-i '" + stream.string() + "' -o '" + (scratch / output).string() + "' " + more;
+  }
+
+  test_support::ScratchDir scratch{"j2kdec_test"};
+  fs::path stream;
+};
+
+// The number after `name` at the start of a table row ("  name   12.34"), or NaN when absent.
+double row_value(const std::string& table, const std::string& name) {
+  std::istringstream lines(table);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("  " + name + " ", 0) != 0) continue;
+    return std::stod(line.substr(2 + name.size()));
+  }
+  return std::nan("");
+}
+
+TEST_F(J2kdecCli, TimingTableHasEveryStageAndTheyAddUpToTheSumLine) {
+  const auto r = j2kdec(decode_args("t.ppm", "--dwt cpu --timing"), scratch.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.rfind("j2kdec: timing in ms, DWT on cpu", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("(asked for the CPU)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" threads\n"), std::string::npos) << r.err;
+  double sum = 0;
+  for (const std::string& stage : kStages) {
+    const double ms = row_value(r.err, stage);
+    ASSERT_FALSE(std::isnan(ms)) << stage << " missing from\n" << r.err;
+    EXPECT_GE(ms, 0.0) << stage;
+    sum += ms;
+  }
+  EXPECT_GT(row_value(r.err, "tier-1"), 0.0);
+  EXPECT_GT(row_value(r.err, "inverse DWT compute"), 0.0);
+  // Each printed cell is rounded to 0.01 ms: the printed sum may differ by half of that per stage.
+  const double sum_line = row_value(r.err, "sum of stages"), total = row_value(r.err, "total (measured)");
+  EXPECT_NEAR(sum, sum_line, 0.005 * static_cast<double>(kStages.size()) + 0.005);
+  // Nothing of the run is left out of the stages but option handling and the worker threads' end:
+  // a stage missing from the sum (tier-1 or the DWT is a third of this decode or more) shows. The
+  // margin is wide because other processes on a 2-core CI machine delay those threads' ends.
+  EXPECT_LE(sum_line, total + 0.01);
+  EXPECT_NEAR(sum_line, total, std::max(0.2 * total, 5.0)) << r.err;
+}
+
+TEST_F(J2kdecCli, TimingJsonIsValidWithTheSameStages) {
+  if (std::system("/usr/bin/python3 -c 'import json' >/dev/null 2>&1") != 0) GTEST_SKIP() << "no python3";
+  const auto r = j2kdec(decode_args("t.pgx", "--dwt cpu --timing=json"), scratch.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const fs::path json = scratch / "timing.json", names = scratch / "stages.txt";
+  std::ofstream(json) << r.err;
+  {
+    std::ofstream out(names);
+    for (const std::string& stage : kStages) out << stage << '\n';
+  }
+  // Python's parser is the judge of validity; it also checks the keys, their order and the sum.
+  const std::string check =
+      "import json, sys\n"
+      "d = json.load(open(sys.argv[1]))\n"
+      "want = open(sys.argv[2]).read().splitlines()\n"
+      "assert list(d['stages_ms']) == want, list(d['stages_ms'])\n"
+      "assert all(isinstance(v, float) and v >= 0 for v in d['stages_ms'].values())\n"
+      "assert abs(sum(d['stages_ms'].values()) - d['sum_ms']) < 1e-3, d\n"
+      "assert d['sum_ms'] <= d['total_ms'] + 1e-3, d\n"
+      "assert d['dwt'].startswith('cpu') and d['dwt_reason'] == 'asked for the CPU' and d['threads'] >= 1, d\n";
+  std::ofstream(scratch / "check.py") << check;
+  const auto c = run("/usr/bin/python3 '" + (scratch / "check.py").string() + "' '" + json.string() + "' '" +
+                         names.string() + "'",
+                     scratch.path());
+  EXPECT_EQ(c.exit_code, 0) << c.err << "\nfrom: " << r.err;
+}
+
+// Without a hardware GPU (CI: llvmpipe at most), auto picks the CPU, says why, and decodes what
+// --dwt cpu decodes. With one, it may pick the GPU, but never a software renderer.
+TEST_F(J2kdecCli, DwtAutoNeverPicksASoftwareRendererAndSaysWhy) {
+  const auto cpu = j2kdec(decode_args("cpu.ppm", "--dwt cpu"), scratch.path());
+  ASSERT_EQ(cpu.exit_code, 0) << cpu.err;
+  const auto automatic = j2kdec(decode_args("auto.ppm", "--dwt auto -v"), scratch.path());
+  ASSERT_EQ(automatic.exit_code, 0) << automatic.err;
+  std::printf("%s", automatic.err.c_str());
+  const auto on = automatic.err.find(", DWT on ");
+  ASSERT_NE(on, std::string::npos) << automatic.err;
+  const std::string backend = automatic.err.substr(on + 9);
+  if (backend.rfind("gpu fragment shaders (", 0) == 0)
+    EXPECT_FALSE(glc::is_software_renderer(backend.substr(0, backend.find(") ("))));
+  else
+    EXPECT_EQ(backend.rfind("cpu lifting", 0), 0u) << backend;
+  bool hardware = false;
+  try {
+    hardware = glc::Context::create_hardware() != nullptr;
+  } catch (const std::exception&) {
+  }
+  if (!hardware) {
+    EXPECT_EQ(backend.rfind("cpu lifting", 0), 0u) << backend;
+    EXPECT_NE(backend.find("no hardware GPU"), std::string::npos) << backend;
+    EXPECT_NE(backend.find("the 9/7 runs on the CPU"), std::string::npos) << backend;
+  }
+  if (backend.rfind("cpu", 0) == 0) {
+    EXPECT_EQ(file_bytes(scratch / "auto.ppm"), file_bytes(scratch / "cpu.ppm"));
+  }
+}
+
+// --dwt gpu takes any GL context, llvmpipe included, and --timing splits the GPU's stages.
+TEST_F(J2kdecCli, DwtGpuRunsOnAnyContextAndSplitsItsStages) {
+  const auto r = j2kdec(decode_args("gpu.ppm", "--dwt gpu --timing"), scratch.path());
+  if (r.exit_code != 0 && r.err.find("no GL context could be made") != std::string::npos)
+    GTEST_SKIP() << "no GL context: " << r.err;
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.rfind("j2kdec: timing in ms, DWT on gpu fragment shaders (", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("(asked for the GPU)"), std::string::npos) << r.err;
+  EXPECT_GT(row_value(r.err, "GL context creation"), 0.0) << r.err;
+  EXPECT_GT(row_value(r.err, "inverse DWT compute"), 0.0) << r.err;
+  EXPECT_GT(row_value(r.err, "download"), 0.0) << r.err;
+}
+
+// A lossless stream needs no GL context: the reason says so whatever --dwt asks.
+TEST_F(J2kdecCli, ReversibleStreamsKeepTheDwtOnTheCpu) {
+  const imageio::Image img = testimages::generate(testimages::Pattern::Mix, 64, 48, 1, 8);
+  codec::EncodeParams p;
+  p.lossless = true;
+  const auto bytes = codec::encode(codec::to_source_image(img, "mix"), p, codec::FileFormat::Codestream);
+  std::ofstream(stream, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
+                                                static_cast<std::streamsize>(bytes.size()));
+  const auto r = j2kdec(decode_args("l.pgm", "--dwt gpu -v"), scratch.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("DWT on cpu lifting"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no irreversible tile-component"), std::string::npos) << r.err;
+}
+
+TEST_F(J2kdecCli, BadTimingModeIsOneLine) {
+  const auto r = j2kdec(decode_args("x.ppm", "--timing=yaml"), scratch.path());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("--timing takes text or json"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(scratch / "x.ppm"));
+}
+
+}  // namespace
