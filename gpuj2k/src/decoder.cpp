@@ -67,7 +67,6 @@ void fill_report(const codec::DecodeReport& r, double read_ms, DecodeReport& out
   out.shader_compile_ms = r.times.shader_compile;
   out.tier2_ms = r.times.tier2;
   out.tier1_ms = r.times.tier1;
-  out.dequantization_ms = r.times.dequantization;
   out.upload_ms = r.times.upload;
   out.dwt_ms = r.times.dwt;
   out.download_ms = r.times.download;

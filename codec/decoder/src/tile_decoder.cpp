@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
@@ -146,7 +145,7 @@ struct BlockTask {
 };
 
 // Tier-1 and dequantisation of every code-block of a tile-component that reaches `window`, into
-// its plane in the Mallat layout of the (reduced) inverse DWT, each stage timed into `times`. The
+// its plane in the Mallat layout of the (reduced) inverse DWT, timed into `times`. The
 // blocks write disjoint parts of the plane, so they are decoded side by side on `pool`.
 void decode_blocks(const TileComponent& tc, const TileComponentParams& params, const ComponentSize& size, int reduce,
                    const Rect& window, const std::vector<BlockState>& states, Plane& plane, base::ThreadPool& pool,
@@ -187,55 +186,31 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
         }
     }
   }
-  // Tier-1: each block's integers as it decoded them (magnitude with the half-step bit, and the
-  // ROI scaling) into its place in the plane, then the dequantisation over the same places: two
-  // passes, so that each stage's wall time is its own. An irreversible plane's floats hold the
-  // integers bit for bit in between (memcpy: no float value is formed from them).
   const auto tier1_start = Clock::now();
+  const int roi_shift = params.roi_shift;
   pool.parallel_for(tasks.size(), [&](std::size_t k) {
     const BlockTask& t = tasks[k];
     const int w = static_cast<int>(t.block->rect.width()), h = static_cast<int>(t.block->rect.height());
     thread_local std::vector<std::int32_t> block;  // one per worker, reused from block to block
     block.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
     decode_block(*t.state, t.mb, w, h, t.orientation, params.coding, block);
-    for (int y = 0; y < h; ++y) {
-      const std::int32_t* from = block.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(w);
-      const std::size_t at = static_cast<std::size_t>(t.y + y) * static_cast<std::size_t>(plane.width()) +
-                             static_cast<std::size_t>(t.x);
-      if (plane.reversible)
-        std::memcpy(plane.ints.data() + at, from, static_cast<std::size_t>(w) * sizeof(std::int32_t));
-      else
-        std::memcpy(plane.floats.data() + at, from, static_cast<std::size_t>(w) * sizeof(std::int32_t));
-    }
-  });
-  times.tier1 += ms_since(tier1_start);
-
-  const auto dequantization_start = Clock::now();
-  const int roi_shift = params.roi_shift;
-  pool.parallel_for(tasks.size(), [&](std::size_t k) {
-    const BlockTask& t = tasks[k];
-    const int w = static_cast<int>(t.block->rect.width()), h = static_cast<int>(t.block->rect.height());
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
-        const std::size_t at = static_cast<std::size_t>(t.y + y) * static_cast<std::size_t>(plane.width()) +
-                               static_cast<std::size_t>(t.x + x);
-        std::int32_t v;
-        if (plane.reversible)
-          v = plane.ints[at];
-        else
-          std::memcpy(&v, plane.floats.data() + at, sizeof v);
+        std::int32_t v = block[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)];
         if (t.roi_threshold) {
           // H.2: coefficients at or above 2^s belong to the region and were scaled up by s.
           const std::int32_t m = v < 0 ? -v : v;
           if (m >= t.roi_threshold) v = v < 0 ? -(m >> roi_shift) : (m >> roi_shift);
         }
+        const std::size_t at = static_cast<std::size_t>(t.y + y) * static_cast<std::size_t>(plane.width()) +
+                               static_cast<std::size_t>(t.x + x);
         if (plane.reversible)
           plane.ints[at] = v / 2;  // the half-step dropped: the exact integer
         else
           plane.floats[at] = static_cast<float>(v) * t.half_delta;
       }
   });
-  times.dequantization += ms_since(dequantization_start);
+  times.tier1 += ms_since(tier1_start);
 }
 
 // The inverse DWT of one plane; a device backend's time is split into its stages as the encoder

@@ -97,7 +97,7 @@ struct DecodeReport {
   std::string dwt_reason;   // why there
   // Milliseconds per stage.
   double read_ms = 0, parse_ms = 0, setup_ms = 0, gl_context_ms = 0, shader_compile_ms = 0, tier2_ms = 0,
-         tier1_ms = 0, dequantization_ms = 0, upload_ms = 0, dwt_ms = 0, download_ms = 0, component_transform_ms = 0;
+         tier1_ms = 0, upload_ms = 0, dwt_ms = 0, download_ms = 0, component_transform_ms = 0;
 };
 
 // What decode would give, from the headers alone (nothing is decoded): the size and components

@@ -88,14 +88,16 @@ struct DecodeStageTimes {
   double gl_context = 0;           // creating the GL context, and releasing it at the end (GPU DWT only)
   double shader_compile = 0;       // compiling the DWT shader (GPU DWT only)
   double tier2 = 0;                // each tile's structure and its packets: headers and code-block data
-  double tier1 = 0;                // code-block decoding (EBCOT or HT)
-  double dequantization = 0;       // ROI de-scaling and the quantisation step, into the DWT's planes
+  // Code-block decoding (EBCOT or HT) with each block's ROI de-scaling and dequantisation into the
+  // DWT's plane, one stage as the encoder's "quantization + tier-1": timing them apart would take a
+  // second pass over the plane.
+  double tier1 = 0;
   double upload = 0;               // planes to the GPU
   double dwt = 0;                  // the inverse transform itself
   double download = 0;             // planes back from the GPU
   double component_transform = 0;  // inverse MCT, DC level shift and clamping, JP2 palette and colour
   double total() const {
-    return read + parse + setup + gl_context + shader_compile + tier2 + tier1 + dequantization + upload + dwt +
+    return read + parse + setup + gl_context + shader_compile + tier2 + tier1 + upload + dwt +
            download + component_transform;
   }
 };
