@@ -84,6 +84,36 @@ void Update53(std::int32_t* HWY_RESTRICT t, const std::int32_t* HWY_RESTRICT l, 
   }
 }
 
+// Line kernels: the per-line operations above over every other line of a strip.
+template <class T, class Op>
+HWY_INLINE void ForTargetLines(T* HWY_RESTRICT data, std::size_t stride, int first, int end, Op op) {
+  for (int b = first; b + 1 < end; b += 2) {
+    T* line = data + static_cast<std::size_t>(b) * stride;
+    op(line, line - stride, line + stride);
+  }
+}
+void LiftLinesSymmetric(float* data, std::size_t stride, std::size_t lanes, int first, int end, float c) {
+  ForTargetLines(data, stride, first, end,
+                 [&](float* t, const float* l, const float* r) { LiftSymmetric(t, l, r, c, lanes); });
+}
+void LiftLinesGeneral(float* data, std::size_t stride, std::size_t lanes, int first, int end, float cl, float cr) {
+  ForTargetLines(data, stride, first, end,
+                 [&](float* t, const float* l, const float* r) { LiftGeneral(t, l, r, cl, cr, lanes); });
+}
+void ScaleLines(float* data, std::size_t stride, std::size_t lanes, int first, int end, float s) {
+  for (int b = first; b < end; b += 2) Scale(data + static_cast<std::size_t>(b) * stride, s, lanes);
+}
+void Predict53Lines(std::int32_t* data, std::size_t stride, std::size_t lanes, int first, int end, bool inverse) {
+  ForTargetLines(data, stride, first, end, [&](std::int32_t* t, const std::int32_t* l, const std::int32_t* r) {
+    Predict53(t, l, r, lanes, inverse);
+  });
+}
+void Update53Lines(std::int32_t* data, std::size_t stride, std::size_t lanes, int first, int end, bool inverse) {
+  ForTargetLines(data, stride, first, end, [&](std::int32_t* t, const std::int32_t* l, const std::int32_t* r) {
+    Update53(t, l, r, lanes, inverse);
+  });
+}
+
 template <class T>
 void DeinterleaveImpl(const T* HWY_RESTRICT src, T* HWY_RESTRICT even, T* HWY_RESTRICT odd, std::size_t n) {
   const hn::ScalableTag<T> d;
@@ -117,6 +147,11 @@ HWY_EXPORT(LiftGeneral);
 HWY_EXPORT(Scale);
 HWY_EXPORT(Predict53);
 HWY_EXPORT(Update53);
+HWY_EXPORT(LiftLinesSymmetric);
+HWY_EXPORT(LiftLinesGeneral);
+HWY_EXPORT(ScaleLines);
+HWY_EXPORT(Predict53Lines);
+HWY_EXPORT(Update53Lines);
 HWY_EXPORT(DeinterleaveFloat);
 HWY_EXPORT(DeinterleaveInt);
 HWY_EXPORT(CurrentTarget);
@@ -133,6 +168,21 @@ void predict53(std::int32_t* t, const std::int32_t* l, const std::int32_t* r, st
 }
 void update53(std::int32_t* t, const std::int32_t* l, const std::int32_t* r, std::size_t n, bool inverse) {
   HWY_DYNAMIC_DISPATCH(Update53)(t, l, r, n, inverse);
+}
+void lift_lines_symmetric(float* data, std::size_t stride, std::size_t lanes, int first, int end, float c) {
+  HWY_DYNAMIC_DISPATCH(LiftLinesSymmetric)(data, stride, lanes, first, end, c);
+}
+void lift_lines_general(float* data, std::size_t stride, std::size_t lanes, int first, int end, float cl, float cr) {
+  HWY_DYNAMIC_DISPATCH(LiftLinesGeneral)(data, stride, lanes, first, end, cl, cr);
+}
+void scale_lines(float* data, std::size_t stride, std::size_t lanes, int first, int end, float s) {
+  HWY_DYNAMIC_DISPATCH(ScaleLines)(data, stride, lanes, first, end, s);
+}
+void predict53_lines(std::int32_t* data, std::size_t stride, std::size_t lanes, int first, int end, bool inverse) {
+  HWY_DYNAMIC_DISPATCH(Predict53Lines)(data, stride, lanes, first, end, inverse);
+}
+void update53_lines(std::int32_t* data, std::size_t stride, std::size_t lanes, int first, int end, bool inverse) {
+  HWY_DYNAMIC_DISPATCH(Update53Lines)(data, stride, lanes, first, end, inverse);
 }
 void deinterleave(const float* src, float* even, float* odd, std::size_t n) {
   HWY_DYNAMIC_DISPATCH(DeinterleaveFloat)(src, even, odd, n);

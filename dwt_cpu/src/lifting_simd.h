@@ -18,6 +18,16 @@ void scale(float* t, float s, std::size_t n);
 void predict53(std::int32_t* t, const std::int32_t* l, const std::int32_t* r, std::size_t n, bool inverse);
 void update53(std::int32_t* t, const std::int32_t* l, const std::int32_t* r, std::size_t n, bool inverse);
 
+// The same over every other line of a strip, one call per lifting step (a call per line costs a
+// dispatch per 64 lanes): for b = first, first + 2, ... with b + 1 < end, line b (lines `stride`
+// apart, `lanes` long) is the target and lines b - 1 and b + 1 its neighbours. scale_lines scales
+// lines first, first + 2, ... below end.
+void lift_lines_symmetric(float* data, std::size_t stride, std::size_t lanes, int first, int end, float c);
+void lift_lines_general(float* data, std::size_t stride, std::size_t lanes, int first, int end, float cl, float cr);
+void scale_lines(float* data, std::size_t stride, std::size_t lanes, int first, int end, float s);
+void predict53_lines(std::int32_t* data, std::size_t stride, std::size_t lanes, int first, int end, bool inverse);
+void update53_lines(std::int32_t* data, std::size_t stride, std::size_t lanes, int first, int end, bool inverse);
+
 // Splits n interleaved pairs: even[j] = src[2j], odd[j] = src[2j + 1].
 void deinterleave(const float* src, float* even, float* odd, std::size_t n);
 void deinterleave(const std::int32_t* src, std::int32_t* even, std::int32_t* odd, std::size_t n);

@@ -6,18 +6,28 @@
 namespace dwt_cpu {
 namespace {
 
-// Calls op(target, left, right) for every interior line of class `target_class`.
-template <class T, class Op>
-void for_each_target_line(const Strip<T>& s, int target_class, Op op) {
-  const int first = s.class_of(1) == target_class ? 1 : 2;
-  for (int b = first; b + 1 < s.lines; b += 2) op(s.line(b), s.line(b - 1), s.line(b + 1));
+// The first interior line of class `target_class` (line 0 has no upper neighbour).
+template <class T>
+int first_target_line(const Strip<T>& s, int target_class) {
+  return s.class_of(1) == target_class ? 1 : 2;
 }
 
+// Every line of each class scaled by its class' gain (or undone).
 void apply_gains(const dwt::Kernel& k, const Strip<float>& s, bool inverse) {
-  for (int b = 0; b < s.lines; ++b) {
-    const double g = s.class_of(b) == 0 ? k.low_gain : k.high_gain;
-    if (g != 1.0) simd::scale(s.line(b), static_cast<float>(inverse ? 1.0 / g : g), s.lanes);
+  for (int c = 0; c < 2; ++c) {
+    const double g = c == 0 ? k.low_gain : k.high_gain;
+    if (g != 1.0)
+      simd::scale_lines(s.data, s.stride, s.lanes, s.class_of(0) == c ? 0 : 1, s.lines,
+                        static_cast<float>(inverse ? 1.0 / g : g));
   }
+}
+
+void lift_step(const Strip<float>& s, int target_class, float cl, float cr) {
+  const int first = first_target_line(s, target_class);
+  if (cl == cr)
+    simd::lift_lines_symmetric(s.data, s.stride, s.lanes, first, s.lines, cl);
+  else
+    simd::lift_lines_general(s.data, s.stride, s.lanes, first, s.lines, cl, cr);
 }
 
 void require_reversible(const dwt::Kernel& k) {
@@ -27,43 +37,27 @@ void require_reversible(const dwt::Kernel& k) {
 }  // namespace
 
 void lift_forward(const dwt::Kernel& k, const Strip<float>& s) {
-  for (const dwt::LiftingStep& step : k.steps) {
-    const auto cl = static_cast<float>(step.left), cr = static_cast<float>(step.right);
-    for_each_target_line(s, static_cast<int>(step.target), [&](float* t, const float* l, const float* r) {
-      if (cl == cr)
-        simd::lift_symmetric(t, l, r, cl, s.lanes);
-      else
-        simd::lift_general(t, l, r, cl, cr, s.lanes);
-    });
-  }
+  for (const dwt::LiftingStep& step : k.steps)
+    lift_step(s, static_cast<int>(step.target), static_cast<float>(step.left), static_cast<float>(step.right));
   apply_gains(k, s, false);
 }
 
 void lift_inverse(const dwt::Kernel& k, const Strip<float>& s) {
   apply_gains(k, s, true);
-  for (auto it = k.steps.rbegin(); it != k.steps.rend(); ++it) {
-    const auto cl = static_cast<float>(-it->left), cr = static_cast<float>(-it->right);
-    for_each_target_line(s, static_cast<int>(it->target), [&](float* t, const float* l, const float* r) {
-      if (cl == cr)
-        simd::lift_symmetric(t, l, r, cl, s.lanes);
-      else
-        simd::lift_general(t, l, r, cl, cr, s.lanes);
-    });
-  }
+  for (auto it = k.steps.rbegin(); it != k.steps.rend(); ++it)
+    lift_step(s, static_cast<int>(it->target), static_cast<float>(-it->left), static_cast<float>(-it->right));
 }
 
 void lift_forward(const dwt::Kernel& k, const Strip<std::int32_t>& s) {
   require_reversible(k);
-  using I = std::int32_t;
-  for_each_target_line(s, 1, [&](I* t, const I* l, const I* r) { simd::predict53(t, l, r, s.lanes, false); });
-  for_each_target_line(s, 0, [&](I* t, const I* l, const I* r) { simd::update53(t, l, r, s.lanes, false); });
+  simd::predict53_lines(s.data, s.stride, s.lanes, first_target_line(s, 1), s.lines, false);
+  simd::update53_lines(s.data, s.stride, s.lanes, first_target_line(s, 0), s.lines, false);
 }
 
 void lift_inverse(const dwt::Kernel& k, const Strip<std::int32_t>& s) {
   require_reversible(k);
-  using I = std::int32_t;
-  for_each_target_line(s, 0, [&](I* t, const I* l, const I* r) { simd::update53(t, l, r, s.lanes, true); });
-  for_each_target_line(s, 1, [&](I* t, const I* l, const I* r) { simd::predict53(t, l, r, s.lanes, true); });
+  simd::update53_lines(s.data, s.stride, s.lanes, first_target_line(s, 0), s.lines, true);
+  simd::predict53_lines(s.data, s.stride, s.lanes, first_target_line(s, 1), s.lines, true);
 }
 
 }  // namespace dwt_cpu
