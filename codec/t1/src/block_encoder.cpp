@@ -265,10 +265,15 @@ EncodedBlock encode_block(const FloatBlock& block, Orientation o, int magnitude_
                           StopRule stop, Distortion distortion) {
   validate_shape(block.origin, block.stride, block.width, block.height, magnitude_bitplanes);
   validate(stop, distortion);
-  const FloatBlockPlanes planes = float_block_planes(block);
-  if (stop.min_slope > 0 && planes.bit_planes > 0 && planes.bit_planes <= magnitude_bitplanes) {
-    // At low rates most blocks are worth nothing: tell them by their energy before loading them.
-    const double energy = float_block_energy(block, planes);
+  if (stop.min_slope <= 0) {
+    CoefficientState state(block, float_block_planes(block));
+    return encode_state(state, block.width, block.height, o, magnitude_bitplanes, style, stop, distortion);
+  }
+  // At low rates most blocks are worth nothing: tell them by their energy before loading them.
+  const FloatBlockSurvey survey = survey_float_block(block);
+  const FloatBlockPlanes& planes = survey.planes;
+  if (planes.bit_planes > 0 && planes.bit_planes <= magnitude_bitplanes) {
+    const double energy = survey.energy;
     if (worth_no_pass(energy, stop)) {
       EncodedBlock out;
       out.energy = energy;

@@ -124,6 +124,37 @@ double FixedPointEnergyRow(const float* HWY_RESTRICT row, std::size_t n, float i
   return result;
 }
 
+double PeakAndEnergyRow(const float* HWY_RESTRICT row, std::size_t n, float inverse_step, float& peak_out) {
+  const hn::ScalableTag<float> df;
+  const hn::RebindToSigned<decltype(df)> di;
+  const DoubleTag<decltype(di)> dd;
+  const std::size_t N = hn::Lanes(df);
+  constexpr float kScale = 256.0f;  // 8 fraction bits
+  const auto inverse = hn::Set(df, inverse_step);
+  const auto largest = hn::Set(df, kLargestMagnitude);
+  const auto to_fixed = hn::Set(df, kScale);
+  auto energy = hn::Zero(dd);
+  auto peak = hn::Zero(df);
+  std::size_t i = 0;
+  for (; i + N <= n; i += N) {  // FixedPointEnergyRow's arithmetic, and the peak
+    auto m = hn::Mul(hn::Abs(hn::LoadU(df, row + i)), inverse);
+    m = hn::IfThenElse(hn::Lt(m, largest), m, largest);
+    peak = hn::Max(peak, m);
+    energy = AddSquares(di, hn::ConvertTo(di, hn::Mul(m, to_fixed)), energy);
+  }
+  double result = hn::GetLane(hn::SumOfLanes(dd, energy));
+  float highest = hn::GetLane(hn::MaxOfLanes(df, peak));
+  for (; i < n; ++i) {
+    const float m = scaled_magnitude(row[i], inverse_step);
+    highest = m > highest ? m : highest;
+    if (m * kScale >= 2147483648.0f) continue;  // the sum is void then (see the header); no overflowing cast
+    const auto f = static_cast<std::uint32_t>(static_cast<std::int32_t>(m * kScale));
+    result += static_cast<double>(f) * static_cast<double>(f);
+  }
+  peak_out = highest > peak_out ? highest : peak_out;
+  return result;
+}
+
 std::uint32_t LoadIndexRow(const std::int32_t* HWY_RESTRICT row, std::size_t n, std::uint32_t* HWY_RESTRICT magnitude,
                            std::uint16_t* HWY_RESTRICT flags, double& energy_sum) {
   const hn::ScalableTag<std::int32_t> di;
@@ -191,6 +222,7 @@ HWY_EXPORT(QuantizeRow);
 HWY_EXPORT(LoadIndexRow);
 HWY_EXPORT(FixedPointEnergyRow);
 HWY_EXPORT(OrStripeRows);
+HWY_EXPORT(PeakAndEnergyRow);
 
 float peak_scaled_magnitude(const float* row, std::size_t n, float inverse_step) {
   return HWY_DYNAMIC_DISPATCH(PeakScaledMagnitude)(row, n, inverse_step);
@@ -208,6 +240,10 @@ double fixed_point_energy_row(const float* row, std::size_t n, float inverse_ste
 std::uint32_t load_index_row(const std::int32_t* row, std::size_t n, std::uint32_t* magnitude, std::uint16_t* flags,
                              double& energy) {
   return HWY_DYNAMIC_DISPATCH(LoadIndexRow)(row, n, magnitude, flags, energy);
+}
+
+double peak_and_energy_row(const float* row, std::size_t n, float inverse_step, float& peak) {
+  return HWY_DYNAMIC_DISPATCH(PeakAndEnergyRow)(row, n, inverse_step, peak);
 }
 
 void or_stripe_rows(const std::uint32_t* rows, std::ptrdiff_t stride, int rows_in_stripe, std::size_t n,

@@ -22,6 +22,12 @@ double quantize_row(const float* row, std::size_t n, float inverse_step, int fin
 // quantize_row's returned sum alone (the same values), with nothing stored.
 double fixed_point_energy_row(const float* row, std::size_t n, float inverse_step, int fine_bits);
 
+// peak_scaled_magnitude and fixed_point_energy_row with 8 fraction bits in one pass: raises `peak`
+// to the row's largest scaled magnitude and returns the sum. The sum is fixed_point_energy_row's
+// (the same values, in the same order) wherever the peak leaves 8 fraction bits (a peak below
+// 2^23); with a larger peak it is meaningless and the caller computes it again.
+double peak_and_energy_row(const float* row, std::size_t n, float inverse_step, float& peak);
+
 // Loads a row of integer indices (or reversible coefficients): magnitude = |c| (in unsigned
 // arithmetic, so INT32_MIN gives 2^31), flags = kNeg where c < 0. Adds the sum of squared
 // magnitudes to `energy` and returns the OR of the magnitudes.

@@ -112,15 +112,34 @@ CoefficientState::CoefficientState(const IntegerBlock& block) : CoefficientState
   bit_planes_ = static_cast<int>(std::bit_width(any_bits));
 }
 
+namespace {
+FloatBlockPlanes planes_of_peak(float peak) {
+  FloatBlockPlanes planes;
+  planes.bit_planes = static_cast<int>(std::bit_width(static_cast<std::uint32_t>(static_cast<std::int32_t>(peak))));
+  planes.fine_bits = std::clamp(31 - planes.bit_planes, 0, kFractionBits);
+  return planes;
+}
+}  // namespace
+
 FloatBlockPlanes float_block_planes(const FloatBlock& block) {
   const auto w = static_cast<std::size_t>(block.width);
   float peak = 0;
   for (int y = 0; y < block.height; ++y)
     peak = std::max(peak, simd::peak_scaled_magnitude(block.origin + y * block.stride, w, block.inverse_step));
-  FloatBlockPlanes planes;
-  planes.bit_planes = static_cast<int>(std::bit_width(static_cast<std::uint32_t>(static_cast<std::int32_t>(peak))));
-  planes.fine_bits = std::clamp(31 - planes.bit_planes, 0, kFractionBits);
-  return planes;
+  return planes_of_peak(peak);
+}
+
+FloatBlockSurvey survey_float_block(const FloatBlock& block) {
+  const auto w = static_cast<std::size_t>(block.width);
+  float peak = 0;
+  double sum = 0;  // in 1/256ths squared
+  for (int y = 0; y < block.height; ++y)
+    sum += simd::peak_and_energy_row(block.origin + y * block.stride, w, block.inverse_step, peak);
+  FloatBlockSurvey survey;
+  survey.planes = planes_of_peak(peak);
+  survey.energy = survey.planes.fine_bits == kFractionBits ? std::ldexp(sum, -2 * kFractionBits)
+                                                           : float_block_energy(block, survey.planes);
+  return survey;
 }
 
 double float_block_energy(const FloatBlock& block, const FloatBlockPlanes& planes) {

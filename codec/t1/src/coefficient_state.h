@@ -17,6 +17,12 @@ struct FloatBlockPlanes {
 FloatBlockPlanes float_block_planes(const FloatBlock& block);
 // The block's energy as CoefficientState(block).energy() gives it, without loading the block.
 double float_block_energy(const FloatBlock& block, const FloatBlockPlanes& planes);
+// Both, reading the block once (a second time only for a block of more than 23 planes).
+struct FloatBlockSurvey {
+  FloatBlockPlanes planes;
+  double energy = 0;
+};
+FloatBlockSurvey survey_float_block(const FloatBlock& block);
 
 // A code-block's working arrays (see BlockView): magnitudes and signs, the stripe column words (all
 // clear to begin with) and, when the coefficients' fractions are given, the fixed-point magnitudes
