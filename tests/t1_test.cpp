@@ -1007,3 +1007,33 @@ TEST(T1StopRule, BlocksWorthNoPassAreNotCoded) {
     EXPECT_EQ(coded.energy, full.energy);
   }
 }
+
+// A pass limit ends the block after that many passes, as the last pass would: the passes kept
+// measure what they did in the full coding, and the block says it stopped early (rate control's
+// check for starved blocks depends on that); a limit at or past the last pass changes nothing.
+TEST(T1StopRule, PassLimitEndsTheBlockThere) {
+  std::mt19937 rng(77);
+  std::normal_distribution<float> coefficient(0.0f, 40.0f);
+  const int w = 24, h = 17;
+  std::vector<float> plane(static_cast<std::size_t>(w * h));
+  for (float& c : plane) c = coefficient(rng);
+  auto encode = [&](codec::t1::StopRule stop) {
+    return codec::t1::encode_block(codec::t1::FloatBlock{plane.data(), w, w, h, 1.0f}, Orientation::LH, 20, {}, stop);
+  };
+  const EncodedBlock full = encode({});
+  const int count = static_cast<int>(full.passes.size());
+  ASSERT_GT(count, 8);
+  for (const int limit : {1, 4, 7, count - 1}) {
+    const EncodedBlock limited = encode(codec::t1::StopRule{0, 1, limit});
+    ASSERT_EQ(static_cast<int>(limited.passes.size()), limit);
+    EXPECT_TRUE(limited.stopped_early);
+    EXPECT_TRUE(limited.passes.back().terminated);
+    for (int p = 0; p < limit; ++p)
+      EXPECT_EQ(limited.passes[static_cast<std::size_t>(p)].distortion_decrease,
+                full.passes[static_cast<std::size_t>(p)].distortion_decrease)
+          << "limit " << limit << " pass " << p;
+  }
+  const EncodedBlock unlimited = encode(codec::t1::StopRule{0, 1, count});
+  EXPECT_FALSE(unlimited.stopped_early);
+  EXPECT_EQ(unlimited.data, full.data);
+}

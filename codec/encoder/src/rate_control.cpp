@@ -153,14 +153,20 @@ double lowest_slope_taken(const std::vector<CodedTile>& tiles, const LayerPasses
 // bit-plane past the cut. A block not coded at all (its weighted energy below the stop rule's
 // slope times a byte) may have been skipped too soon when even its energy, bought with one byte,
 // reaches the lowest slope the allocation takes; it is coded again under a stop rule below that
-// slope (the check then applies to it as to any block that stopped), the others in full.
+// slope (the check then applies to it as to any block that stopped). A block that stopped is coded
+// again with two more bit-planes than it had (kRecodePlanes; the check applies again). In
+// `final_round` both are coded in full, and a block coded in full is never starved again. (Most starved blocks need
+// only the significance pass of their last, quiet plane: a plane's average slope hides its best pass. In full they cost
+// some twenty planes each.)
 struct StarvedBlock {
   std::size_t tile = 0, block = 0;
   t1::StopRule stop;  // min_slope 0: every pass
 };
 
+constexpr int kRecodePlanes = 2;
+
 std::vector<StarvedBlock> starved_blocks(const std::vector<CodedTile>& tiles, const LayerPasses& passes,
-                                         const std::vector<std::vector<rate::HullPoint>>& hulls) {
+                                         const std::vector<std::vector<rate::HullPoint>>& hulls, bool final_round) {
   const double lowest_slope = lowest_slope_taken(tiles, passes, hulls);
   std::vector<StarvedBlock> starved;
   for (std::size_t t = 0; t < tiles.size(); ++t)
@@ -170,12 +176,13 @@ std::vector<StarvedBlock> starved_blocks(const std::vector<CodedTile>& tiles, co
       const int coded = static_cast<int>(eb.passes.size());
       if (coded == 0) {
         if (eb.energy * tiles[t].jobs[b].weight >= lowest_slope)
-          starved.push_back({t, b, t1::StopRule{lowest_slope / kStopSafety, 1}});
+          starved.push_back({t, b, final_round ? t1::StopRule{} : t1::StopRule{lowest_slope / kStopSafety, 1}});
         continue;
       }
       // The last coded bit-plane's first pass: its cleanup when only the top plane was coded.
       const int last_plane_start = coded == 1 ? 0 : coded - 3;
-      if (passes[t][b].back() > last_plane_start) starved.push_back({t, b, {}});
+      if (passes[t][b].back() > last_plane_start)
+        starved.push_back({t, b, final_round ? t1::StopRule{} : t1::StopRule{0, 1, coded + 3 * kRecodePlanes}});
     }
   return starved;
 }
@@ -222,10 +229,11 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
       report.times.tier1 += ms;
       continue;
     }
-    const auto starved = starved_blocks(tiles, passes, hulls);
-    // A block coded again in full is never starved again; one that was skipped may stop again,
-    // and then be coded in full a round later: three rounds are enough.
-    if (starved.empty() || round == 3) break;
+    // Starved blocks get more planes in the first rounds and every pass in the last (see
+    // starved_blocks), after which none is starved: four allocations at most.
+    constexpr int kFinalRound = 2;
+    const auto starved = starved_blocks(tiles, passes, hulls, round == kFinalRound);
+    if (starved.empty() || round > kFinalRound) break;
     report.recoded_blocks += starved.size();
     const auto recode_start = Clock::now();
     in.pool.parallel_for(starved.size(), [&](std::size_t k) {

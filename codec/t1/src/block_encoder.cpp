@@ -230,6 +230,7 @@ EncodedBlock encode_state(CoefficientState& state, int width, int height, Orient
       plane_gain = 0;
       plane_start = bytes;
     }
+    if (stop.pass_limit > 0 && pass + 1 >= stop.pass_limit && pass + 1 < count) last = true;
     seg.pass_done(pass, raw, last || pass_ends_segment(pass, count, style));
     if (style.reset) reset_contexts(cx);
     if (last) {

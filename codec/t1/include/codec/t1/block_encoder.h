@@ -54,9 +54,11 @@ struct EncodedBlock {
 // estimated from the coder's state). The codeword is then terminated there, as if that pass were
 // the last. A block whose weighted energy (all the distortion it could ever buy) is below
 // `min_slope` times one byte is not coded at all: no pass, stopped_early set. 0: every pass.
+// `pass_limit`, when positive, also stops the block (stopped_early set) after that many passes.
 struct StopRule {
   double min_slope = 0;
   double weight = 1;
+  int pass_limit = 0;
 };
 
 // Whether the passes measure the distortion decrease they buy (PassInfo::distortion_decrease).
