@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cleanup_encoder.h"
+#include "plane_error_simd.h"
 #include "refinement_encoder.h"
 #include "codec/t1/dead_zone.h"
 
@@ -198,16 +199,18 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
   // Errors: a magnitude below 2^p leaves its whole value, gathered per bit length and summed over
   // the planes at or above it; one at or above 2^p leaves its residual at p, summed plane by plane.
   std::vector<double> insignificant(static_cast<std::size_t>(planes) + 1, 0.0);
+  thread_local std::vector<double> offsets;  // each sample's fraction below its index
+  offsets.resize(b.magnitudes.size());
   for (std::size_t i = 0; i < b.magnitudes.size(); ++i) {
     const std::uint32_t m = b.magnitudes[i];
     const double value = value_of(b, i);
-    const int length = static_cast<int>(std::bit_width(m));
-    insignificant[static_cast<std::size_t>(length)] += value * value;
-    for (int p = 0; p < length; ++p) {
-      const double residual = value - (static_cast<double>(m >> p) * two_to(p) + half_interval(b, p));
-      out[static_cast<std::size_t>(p)].error += residual * residual;
-    }
+    offsets[i] = value - static_cast<double>(m);
+    insignificant[static_cast<std::size_t>(std::bit_width(m))] += value * value;
   }
+  std::vector<double> significant(static_cast<std::size_t>(planes), 0.0);
+  simd::add_significant_errors(b.magnitudes.data(), offsets.data(), b.magnitudes.size(), planes, half_interval(b, 0),
+                               significant.data());
+  for (int p = 0; p < planes; ++p) out[static_cast<std::size_t>(p)].error += significant[static_cast<std::size_t>(p)];
   double below = 0;
   for (int p = 0; p <= planes; ++p) {
     below += insignificant[static_cast<std::size_t>(p)];
