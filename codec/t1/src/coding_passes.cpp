@@ -1,6 +1,7 @@
 #include "coding_passes.h"
 
 #include <algorithm>
+#include <bit>
 
 #include "distortion.h"
 #include "codec/t1/stripe_columns.h"
@@ -101,18 +102,21 @@ template <bool kMeasure, class Symbols>
 double refinement_pass_impl(const BlockView v, int plane, Symbols s) {
   const PlaneDistortion d(plane + v.fine_bits);
   DistortionSum gain(plane + v.fine_bits, v.fine_bits);
-  for_each_column(v, [&](std::uint32_t* w, std::ptrdiff_t top, int rows) {
+  for_each_column(v, [&](std::uint32_t* w, std::ptrdiff_t top, int /*rows: only rows in the block are significant*/) {
     const std::uint32_t word = *w;  // refinement changes no significance: one load does
     // Significant before this plane: significant, and not made so by this plane's first pass.
     const unsigned due = column::significant_rows(word) & ~(word >> 24) & 0xFu;
     if (due == 0) return;
     std::uint32_t refined = 0;
-    for_each_row(v, top, 0, rows, [&](int r, std::ptrdiff_t i) {
-      if (!(due & (1u << r))) return;
+    // The due rows one by one, lowest first (scan order): a branch per row coded rather than a
+    // poorly predicted one per row of the column.
+    for (unsigned left = due; left != 0; left &= left - 1) {
+      const int r = std::countr_zero(left);
+      const std::ptrdiff_t i = top + r * v.stride;
       s.decision(bit_at(v.magnitude[i], plane), refinement_context(word, r));
       refined |= column::refined(r);
       if constexpr (kMeasure) gain.add_units(d.refinement_units(v.fine[i]));
-    });
+    }
     *w = word | refined;
   });
   return gain.value();
