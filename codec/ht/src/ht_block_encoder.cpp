@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cleanup_encoder.h"
-#include "plane_error_simd.h"
+#include "block_simd.h"
 #include "refinement_encoder.h"
 #include "codec/t1/dead_zone.h"
 
@@ -147,14 +147,11 @@ HtBlock load_ht_block(const t1::FloatBlock& block) {
             std::vector<std::uint8_t>(n),
             std::vector<std::uint8_t>(n),
             0};
-  std::vector<std::int32_t> row_indices(w);
   std::uint32_t all = 0;
   for (int y = 0; y < block.height; ++y) {
-    const float* row = block.origin + y * block.stride;
     const std::size_t base = static_cast<std::size_t>(y) * w;
-    for (std::size_t x = 0; x < w; ++x)
-      row_indices[x] = t1::quantize(row[x], block.inverse_step, b.fractions[base + x]);
-    all |= split_signs(row_indices.data(), w, b.magnitudes.data() + base, b.negative.data() + base);
+    all |= simd::quantize_row(block.origin + y * block.stride, w, block.inverse_step, b.magnitudes.data() + base,
+                              b.negative.data() + base, b.fractions.data() + base);
   }
   b.bit_planes = static_cast<int>(std::bit_width(all));
   return b;

@@ -1,0 +1,105 @@
+// Highway's foreach_target re-includes this file once per SIMD target.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "block_simd.cpp"  // found through the src include directory
+#include <hwy/foreach_target.h>              // must precede highway.h
+#include <hwy/highway.h>
+
+#include "block_simd.h"
+#include "codec/t1/dead_zone.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace codec::ht::simd {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+std::uint32_t QuantizeRow(const float* HWY_RESTRICT row, std::size_t n, float inverse_step,
+                          std::uint32_t* HWY_RESTRICT magnitude, std::uint8_t* HWY_RESTRICT negative,
+                          std::uint8_t* HWY_RESTRICT fraction) {
+  const hn::ScalableTag<float> df;
+  const hn::RebindToSigned<decltype(df)> di;
+  const hn::RebindToUnsigned<decltype(df)> du;
+  const hn::Rebind<std::uint8_t, decltype(di)> d8;
+  const std::size_t N = hn::Lanes(df);
+  const auto inverse = hn::Set(df, inverse_step);
+  const auto largest = hn::Set(df, t1::kLargestMagnitude);
+  const auto to_256ths = hn::Set(df, 256.0f);
+  const auto zero = hn::Zero(di), top = hn::Set(di, 255), one = hn::Set(di, 1);
+  auto any = hn::Zero(di);
+  std::size_t i = 0;
+  for (; i + N <= n; i += N) {
+    const auto c = hn::LoadU(df, row + i);
+    auto m = hn::Mul(hn::Abs(c), inverse);
+    m = hn::IfThenElse(hn::Lt(m, largest), m, largest);  // NaN: the clamp, as scaled_magnitude
+    const auto q = hn::ConvertTo(di, m);                 // m >= 0: truncation is the floor
+    const auto f = hn::ConvertTo(di, hn::Mul(hn::Sub(m, hn::ConvertTo(df, q)), to_256ths));
+    hn::StoreU(hn::BitCast(du, q), du, magnitude + i);
+    hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(f, zero), top)), d8, fraction + i);
+    const auto is_negative = hn::And(hn::RebindMask(di, hn::Lt(c, hn::Zero(df))), hn::Ne(q, zero));
+    hn::StoreU(hn::DemoteTo(d8, hn::IfThenElseZero(is_negative, one)), d8, negative + i);
+    any = hn::Or(any, q);
+  }
+  HWY_ALIGN std::int32_t lanes[hn::MaxLanes(di)];
+  hn::Store(any, di, lanes);
+  std::uint32_t all = 0;
+  for (std::size_t k = 0; k < N; ++k) all |= static_cast<std::uint32_t>(lanes[k]);
+  for (; i < n; ++i) {
+    const std::int32_t index = t1::quantize(row[i], inverse_step, fraction[i]);
+    magnitude[i] = static_cast<std::uint32_t>(index < 0 ? -index : index);
+    negative[i] = index < 0 ? 1 : 0;
+    all |= magnitude[i];
+  }
+  return all;
+}
+
+void AddSignificantErrors(const std::uint32_t* HWY_RESTRICT magnitude, const double* HWY_RESTRICT offset, std::size_t n,
+                          int planes, double half_at_zero, double* HWY_RESTRICT error) {
+  const hn::ScalableTag<double> dd;
+  const hn::Rebind<std::int32_t, decltype(dd)> di;  // as many int32 lanes as doubles
+  const std::size_t N = hn::Lanes(dd);
+  for (int p = 0; p < planes; ++p) {
+    const auto low_bits = static_cast<std::int32_t>((std::uint32_t{1} << p) - 1);
+    const double half = p > 0 ? static_cast<double>(std::uint32_t{1} << (p - 1)) : half_at_zero;
+    const auto mask = hn::Set(di, low_bits), one = hn::Set(di, 1);
+    const auto h = hn::Set(dd, half);
+    auto sum = hn::Zero(dd);
+    std::size_t i = 0;
+    for (; i + N <= n; i += N) {
+      // Magnitudes are below 2^31, so they compare and mask as int32.
+      const auto m = hn::BitCast(di, hn::LoadU(hn::RebindToUnsigned<decltype(di)>(), magnitude + i));
+      const auto significant = hn::PromoteTo(dd, hn::IfThenElseZero(hn::Gt(m, mask), one));  // 1.0 or 0.0
+      const auto residual = hn::Sub(hn::Add(hn::PromoteTo(dd, hn::And(m, mask)), hn::LoadU(dd, offset + i)), h);
+      const auto counted = hn::Mul(residual, significant);
+      sum = hn::MulAdd(counted, counted, sum);
+    }
+    double total = hn::GetLane(hn::SumOfLanes(dd, sum));
+    for (; i < n; ++i) {
+      if (magnitude[i] <= static_cast<std::uint32_t>(low_bits)) continue;
+      const double residual =
+          static_cast<double>(magnitude[i] & static_cast<std::uint32_t>(low_bits)) + offset[i] - half;
+      total += residual * residual;
+    }
+    error[p] += total;
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace codec::ht::simd
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace codec::ht::simd {
+HWY_EXPORT(QuantizeRow);
+HWY_EXPORT(AddSignificantErrors);
+
+std::uint32_t quantize_row(const float* row, std::size_t n, float inverse_step, std::uint32_t* magnitude,
+                           std::uint8_t* negative, std::uint8_t* fraction) {
+  return HWY_DYNAMIC_DISPATCH(QuantizeRow)(row, n, inverse_step, magnitude, negative, fraction);
+}
+
+void add_significant_errors(const std::uint32_t* magnitude, const double* offset, std::size_t n, int planes,
+                            double half_at_zero, double* error) {
+  HWY_DYNAMIC_DISPATCH(AddSignificantErrors)(magnitude, offset, n, planes, half_at_zero, error);
+}
+
+}  // namespace codec::ht::simd
+#endif

@@ -1,0 +1,24 @@
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+// The HT block coder's loops over samples, vectorised with Highway and dispatched at run time.
+namespace codec::ht::simd {
+
+// A row of float coefficients quantised as t1::quantize(c, inverse_step, fraction) does, bit for
+// bit: magnitude = the index's magnitude, negative = 1 where the index is negative, fraction =
+// floor(256 * what the index drops), clamped to 0..255. Returns the OR of the magnitudes.
+std::uint32_t quantize_row(const float* row, std::size_t n, float inverse_step, std::uint32_t* magnitude,
+                           std::uint8_t* negative, std::uint8_t* fraction);
+
+// The squared error a cleanup from each bit-plane leaves on the samples it makes significant,
+// summed for all planes at once (plane_statistics' costliest part: a sum over samples and their
+// planes).
+// For each plane p < planes: error[p] += the sum, over samples with magnitude[i] >= 2^p, of
+// ((magnitude[i] mod 2^p) + offset[i] - half(p))^2, where half(p) = 2^(p-1) for p > 0 and
+// `half_at_zero` for p = 0. `offset` holds each sample's fraction below its index (0 when none).
+// Magnitudes are below 2^31.
+void add_significant_errors(const std::uint32_t* magnitude, const double* offset, std::size_t n, int planes,
+                            double half_at_zero, double* error);
+
+}  // namespace codec::ht::simd
