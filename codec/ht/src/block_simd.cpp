@@ -51,6 +51,60 @@ std::uint32_t QuantizeRow(const float* HWY_RESTRICT row, std::size_t n, float in
   return all;
 }
 
+CleanupErrors CleanupErrorSums(const std::uint32_t* HWY_RESTRICT magnitude, const std::uint8_t* HWY_RESTRICT fraction,
+                               std::size_t n, int p, double half_at_zero, bool refinement) {
+  const hn::ScalableTag<double> dd;
+  const hn::Rebind<std::int32_t, decltype(dd)> di;
+  const hn::Rebind<std::uint8_t, decltype(dd)> d8;
+  const std::size_t N = hn::Lanes(dd);
+  auto half = [&](int plane) {
+    return plane > 0 ? static_cast<double>(std::uint32_t{1} << (plane - 1)) : half_at_zero;
+  };
+  const auto low_bits = static_cast<std::int32_t>((std::uint32_t{1} << p) - 1);
+  const std::int32_t finer_bits = p > 0 ? low_bits >> 1 : 0;
+  const auto mask = hn::Set(di, low_bits), finer_mask = hn::Set(di, finer_bits), one = hn::Set(di, 1);
+  const auto h = hn::Set(dd, half(p)), finer_h = hn::Set(dd, half(p > 0 ? p - 1 : 0));
+  const auto to_units = hn::Set(dd, 1.0 / 256);
+  auto energy = hn::Zero(dd), after = hn::Zero(dd), refined = hn::Zero(dd);
+  std::size_t i = 0;
+  for (; i + N <= n; i += N) {
+    const auto m = hn::BitCast(di, hn::LoadU(hn::RebindToUnsigned<decltype(di)>(), magnitude + i));
+    const auto offset =
+        fraction ? hn::Mul(hn::PromoteTo(dd, hn::PromoteTo(di, hn::LoadU(d8, fraction + i))), to_units) : hn::Zero(dd);
+    const auto v = hn::Add(hn::PromoteTo(dd, m), offset);
+    const auto significant = hn::PromoteTo(dd, hn::IfThenElseZero(hn::Gt(m, mask), one));  // 1.0 or 0.0
+    const auto t = hn::Sub(hn::Add(hn::PromoteTo(dd, hn::And(m, mask)), offset), h);
+    const auto e = hn::MulAdd(significant, hn::Sub(t, v), v);
+    energy = hn::MulAdd(v, v, energy);
+    after = hn::MulAdd(e, e, after);
+    if (refinement) {
+      const auto finer = hn::Sub(hn::Add(hn::PromoteTo(dd, hn::And(m, finer_mask)), offset), finer_h);
+      refined = hn::MulAdd(significant, hn::Sub(hn::Mul(t, t), hn::Mul(finer, finer)), refined);
+    }
+  }
+  CleanupErrors out;
+  out.energy = hn::GetLane(hn::SumOfLanes(dd, energy));
+  out.after_cleanup = hn::GetLane(hn::SumOfLanes(dd, after));
+  out.refined = hn::GetLane(hn::SumOfLanes(dd, refined));
+  for (; i < n; ++i) {
+    const std::uint32_t m = magnitude[i];
+    const double offset = fraction ? fraction[i] / 256.0 : 0.0;
+    const double v = static_cast<double>(m) + offset;
+    out.energy += v * v;
+    if (m <= static_cast<std::uint32_t>(low_bits)) {
+      out.after_cleanup += v * v;
+      continue;
+    }
+    const double t = static_cast<double>(m & static_cast<std::uint32_t>(low_bits)) + offset - half(p);
+    out.after_cleanup += t * t;
+    if (refinement) {
+      const double finer = static_cast<double>(m & static_cast<std::uint32_t>(finer_bits)) + offset - half(p - 1);
+      out.refined += t * t - finer * finer;
+    }
+  }
+  return out;
+}
+
 void AddSignificantErrors(const std::uint32_t* HWY_RESTRICT magnitude, const double* HWY_RESTRICT offset, std::size_t n,
                           int planes, double half_at_zero, double* HWY_RESTRICT error) {
   const hn::ScalableTag<double> dd;
@@ -90,6 +144,12 @@ HWY_AFTER_NAMESPACE();
 namespace codec::ht::simd {
 HWY_EXPORT(QuantizeRow);
 HWY_EXPORT(AddSignificantErrors);
+HWY_EXPORT(CleanupErrorSums);
+
+CleanupErrors cleanup_errors(const std::uint32_t* magnitude, const std::uint8_t* fraction, std::size_t n, int p,
+                             double half_at_zero, bool refinement) {
+  return HWY_DYNAMIC_DISPATCH(CleanupErrorSums)(magnitude, fraction, n, p, half_at_zero, refinement);
+}
 
 std::uint32_t quantize_row(const float* row, std::size_t n, float inverse_step, std::uint32_t* magnitude,
                            std::uint8_t* negative, std::uint8_t* fraction) {

@@ -11,6 +11,18 @@ namespace codec::ht::simd {
 std::uint32_t quantize_row(const float* row, std::size_t n, float inverse_step, std::uint32_t* magnitude,
                            std::uint8_t* negative, std::uint8_t* fraction);
 
+// What a cleanup on plane p leaves, over all n samples, with v = magnitude + fraction / 256 (or
+// the magnitude alone when `fraction` is null) and e_p(v) the residual after a cleanup on p
+// (v itself below 2^p, else (magnitude mod 2^p) + fraction / 256 - half(p); half(p) = 2^(p-1),
+// or `half_at_zero` at p = 0): energy = sum of v^2, after_cleanup = sum of e_p^2 and, with
+// `refinement` (p >= 1), refined = the sum over samples at or above 2^p of e_p^2 - e_(p-1)^2 (the
+// MagRef pass' decrease).
+struct CleanupErrors {
+  double energy = 0, after_cleanup = 0, refined = 0;
+};
+CleanupErrors cleanup_errors(const std::uint32_t* magnitude, const std::uint8_t* fraction, std::size_t n, int p,
+                             double half_at_zero, bool refinement);
+
 // The squared error a cleanup from each bit-plane leaves on the samples it makes significant,
 // summed for all planes at once (plane_statistics' costliest part: a sum over samples and their
 // planes).

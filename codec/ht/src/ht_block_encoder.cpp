@@ -54,36 +54,17 @@ double residual_at(const HtBlock& b, std::size_t i, int p) {
   return residual * residual;
 }
 
-// Squared error in the passes' units before any pass (the energy) and after the cleanup on plane
-// p, with a significant magnitude reconstructed at the middle of what the decoder knows of it.
-struct ErrorSums {
-  double energy = 0, after_cleanup = 0;
-};
-
-// `after_cleanup` only when measured: an encode that keeps every pass needs the energy alone.
-ErrorSums error_sums(const HtBlock& b, int p, t1::Distortion distortion) {
-  ErrorSums s;
-  const bool measured = distortion == t1::Distortion::Measured;
-  for (std::size_t i = 0; i < b.magnitudes.size(); ++i) {
-    const double value = value_of(b, i);
-    s.energy += value * value;
-    if (measured) s.after_cleanup += residual_at(b, i, p);
-  }
-  return s;
-}
-
 // Appends the SigProp and MagRef passes of plane p - 1 to a block whose cleanup on plane p is
 // `out`'s one pass: the refinement segment after the cleanup segment, each pass terminated (it
-// ends its stream) and its distortion decrease measured on the samples it changes.
-void add_refinement_passes(const HtBlock& b, int p, t1::Distortion distortion, t1::EncodedBlock& out) {
+// ends its stream) and its distortion decrease measured on the samples it changes (MagRef's
+// given, from simd::cleanup_errors).
+void add_refinement_passes(const HtBlock& b, int p, t1::Distortion distortion, double magref_decrease,
+                           t1::EncodedBlock& out) {
   const RefinementSegment segment = encode_refinement(b.magnitudes, b.negative, b.width, b.height, p);
-  double sigprop_decrease = 0, magref_decrease = 0;
-  if (distortion == t1::Distortion::Measured) {
+  double sigprop_decrease = 0;
+  if (distortion == t1::Distortion::Measured)
     for (const std::size_t i : segment.became_significant)
       sigprop_decrease += residual_at(b, i, p) - residual_at(b, i, p - 1);
-    for (std::size_t i = 0; i < b.magnitudes.size(); ++i)
-      if ((b.magnitudes[i] >> p) != 0) magref_decrease += residual_at(b, i, p) - residual_at(b, i, p - 1);
-  }
   const std::size_t cleanup_bytes = out.data.size();
   out.data.insert(out.data.end(), segment.bytes.begin(), segment.bytes.end());
   out.passes.push_back(t1::PassInfo{cleanup_bytes + segment.sigprop_bytes, sigprop_decrease, true});
@@ -168,7 +149,11 @@ t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int 
   if (out.bit_planes > magnitude_bitplanes)
     throw std::invalid_argument("HT block: a magnitude needs " + std::to_string(out.bit_planes) +
                                 " bit-planes, over Mb = " + std::to_string(magnitude_bitplanes));
-  const ErrorSums sums = error_sums(b, cleanup_plane, distortion);
+  const bool measured = distortion == t1::Distortion::Measured;
+  const bool refined = passes == HtPasses::CleanupAndRefinement && cleanup_plane > 0;
+  const simd::CleanupErrors sums =
+      simd::cleanup_errors(b.magnitudes.data(), b.fractions.empty() ? nullptr : b.fractions.data(), b.magnitudes.size(),
+                           cleanup_plane, half_interval(b, 0), measured && refined);
   out.energy = sums.energy;
   if (out.bit_planes <= cleanup_plane) {
     out.missing_msbs = magnitude_bitplanes;
@@ -183,10 +168,9 @@ t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int 
   }
   out.first_pass_planes = out.bit_planes - cleanup_plane;
   out.missing_msbs = magnitude_bitplanes - 1 - cleanup_plane;
-  const double decrease = distortion == t1::Distortion::Measured ? sums.energy - sums.after_cleanup : 0.0;
+  const double decrease = measured ? sums.energy - sums.after_cleanup : 0.0;
   out.passes.push_back(t1::PassInfo{out.data.size(), decrease, true});
-  if (passes == HtPasses::CleanupAndRefinement && cleanup_plane > 0)
-    add_refinement_passes(b, cleanup_plane, distortion, out);
+  if (refined) add_refinement_passes(b, cleanup_plane, distortion, sums.refined, out);
   return out;
 }
 
