@@ -182,10 +182,11 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
   std::vector<double> insignificant(static_cast<std::size_t>(planes) + 1, 0.0);
   thread_local std::vector<double> offsets;  // each sample's fraction below its index
   offsets.resize(b.magnitudes.size());
+  const std::uint8_t* fractions = b.fractions.empty() ? nullptr : b.fractions.data();
   for (std::size_t i = 0; i < b.magnitudes.size(); ++i) {
     const std::uint32_t m = b.magnitudes[i];
-    const double value = value_of(b, i);
-    offsets[i] = value - static_cast<double>(m);
+    offsets[i] = fractions ? fractions[i] / 256.0 : 0.0;
+    const double value = static_cast<double>(m) + offsets[i];  // value_of(b, i), exactly
     insignificant[static_cast<std::size_t>(std::bit_width(m))] += value * value;
   }
   std::vector<double> significant(static_cast<std::size_t>(planes), 0.0);
@@ -207,15 +208,14 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
   const auto n = static_cast<std::size_t>(planes) + 1;
   std::vector<std::int64_t> quad_ends(n, 0), sample_ends(n, 0), top_ends(n, 0), extra_ends(n, 0);
   std::int64_t quad_count = 0, sample_count = 0, top_sum = 0, extra_count = 0;
-  for (int y0 = 0; y0 < b.height; y0 += 2)
+  const auto w = static_cast<std::size_t>(b.width);
+  for (int y0 = 0; y0 < b.height; y0 += 2) {
+    const std::uint32_t* upper = b.magnitudes.data() + static_cast<std::size_t>(y0) * w;
+    const std::uint32_t* lower = y0 + 1 < b.height ? upper + w : nullptr;  // none below the last odd row
     for (int x0 = 0; x0 < b.width; x0 += 2) {
-      std::uint32_t m[4] = {0, 0, 0, 0};
-      for (int k = 0; k < 4; ++k) {
-        const int x = x0 + (k >> 1), y = y0 + (k & 1);
-        if (x < b.width && y < b.height)
-          m[k] = b.magnitudes[static_cast<std::size_t>(y) * static_cast<std::size_t>(b.width) +
-                              static_cast<std::size_t>(x)];
-      }
+      const bool right = x0 + 1 < b.width;
+      const std::uint32_t m[4] = {upper[x0], lower ? lower[x0] : 0u, right ? upper[x0 + 1] : 0u,
+                                  lower && right ? lower[x0 + 1] : 0u};
       const std::uint32_t largest = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
       const int length = static_cast<int>(std::bit_width(largest));
       if (length == 0) continue;
@@ -233,6 +233,7 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
         --extra_ends[static_cast<std::size_t>(std::min(below_top, sample_length))];
       }
     }
+  }
   std::vector<std::int64_t> quads(n, 0), samples(n, 0), bits(n, 0);
   for (int p = 0; p < planes; ++p) {
     const auto i = static_cast<std::size_t>(p);
