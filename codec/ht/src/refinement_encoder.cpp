@@ -77,16 +77,12 @@ class Significance {
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) state_[cell(x, y)] = (magnitudes[index(x, y)] >> plane) != 0 ? 1 : 0;
   }
-  bool in_cleanup(int x, int y) const { return state_[cell(x, y)] == 1; }
-  bool any(int x, int y) const { return state_[cell(x, y)] != 0; }
-  void set_by_sigprop(int x, int y) { state_[cell(x, y)] = 2; }
-  // Whether a sample has a significant neighbour among its eight.
-  bool has_significant_neighbour(int x, int y) const {
-    const std::uint8_t* above = &state_[cell(x, y) - stride_ - 1];
-    const std::uint8_t* here = above + stride_;
-    const std::uint8_t* below = here + stride_;
-    return (above[0] | above[1] | above[2] | here[0] | here[2] | below[0] | below[1] | below[2]) != 0;
-  }
+  // Raw access for the passes' inner loops: the state byte of (x, y) is cells()[cell_of(x, y)],
+  // rows stride() apart.
+  std::uint8_t* cells() { return state_.data(); }
+  const std::uint8_t* cells() const { return state_.data(); }
+  std::size_t cell_of(int x, int y) const { return cell(x, y); }
+  std::size_t stride() const { return stride_; }
   // The sample's index in the block's row-major arrays.
   std::size_t index(int x, int y) const {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
@@ -114,17 +110,23 @@ void sigprop_pass(std::span<const std::uint32_t> m, std::span<const std::uint8_t
     for (int x0 = 0; x0 < width; x0 += 4) {
       const int x1 = std::min(x0 + 4, width);
       const std::size_t group_start = became.size();
-      for (int x = x0; x < x1; ++x)
-        for (int y = y0; y < y1; ++y) {
-          if (sig.any(x, y) || !sig.has_significant_neighbour(x, y)) continue;
-          const std::size_t i = sig.index(x, y);
+      const std::size_t stride = sig.stride();
+      for (int x = x0; x < x1; ++x) {
+        std::uint8_t* cell = sig.cells() + sig.cell_of(x, y0);
+        std::size_t i = sig.index(x, y0);
+        for (int y = y0; y < y1; ++y, cell += stride, i += static_cast<std::size_t>(width)) {
+          if (cell[0] != 0) continue;
+          const std::uint8_t* above = cell - stride;
+          const std::uint8_t* below = cell + stride;
+          if ((above[-1] | above[0] | above[1] | cell[-1] | cell[1] | below[-1] | below[0] | below[1]) == 0) continue;
           const std::uint32_t bit = (m[i] >> q) & 1;
           out.put(bit);
           if (bit) {
-            sig.set_by_sigprop(x, y);
+            cell[0] = 2;  // significant by SigProp
             became.push_back(i);
           }
         }
+      }
       for (std::size_t k = group_start; k < became.size(); ++k) out.put(negative[became[k]] ? 1 : 0);
     }
   }
@@ -134,10 +136,16 @@ void sigprop_pass(std::span<const std::uint32_t> m, std::span<const std::uint8_t
 // bit q of every sample significant in the cleanup.
 void magref_pass(std::span<const std::uint32_t> m, int width, int height, int q, const Significance& sig,
                  MagRefPacker& out) {
-  for (int y0 = 0; y0 < height; y0 += 4)
-    for (int x = 0; x < width; ++x)
-      for (int y = y0; y < std::min(y0 + 4, height); ++y)
-        if (sig.in_cleanup(x, y)) out.put((m[sig.index(x, y)] >> q) & 1);
+  const std::size_t stride = sig.stride();
+  for (int y0 = 0; y0 < height; y0 += 4) {
+    const int rows = std::min(4, height - y0);
+    for (int x = 0; x < width; ++x) {
+      const std::uint8_t* cell = sig.cells() + sig.cell_of(x, y0);
+      std::size_t i = sig.index(x, y0);
+      for (int r = 0; r < rows; ++r, cell += stride, i += static_cast<std::size_t>(width))
+        if (*cell == 1) out.put((m[i] >> q) & 1);  // significant in the cleanup
+    }
+  }
 }
 
 }  // namespace
