@@ -14,7 +14,9 @@ namespace {
 
 // Magnitude exponent E_n (T.814 7.3.7): the bit length of 2 mu - 1, 0 for an insignificant sample.
 // v_n = 2 (mu - 1) + sign then fits in E_n bits, with bit E_n - 1 set whenever E_n > 1.
-int exponent(std::uint32_t mu) { return mu == 0 ? 0 : static_cast<int>(std::bit_width(2 * mu - 1)); }
+// Written without a branch ((2 mu - 1) for mu > 0, 0 for mu = 0): whether a sample is 0 is
+// unpredictable in a busy block.
+int exponent(std::uint32_t mu) { return static_cast<int>(std::bit_width((mu << 1) - (mu != 0 ? 1u : 0u))); }
 
 // The block's samples as the cleanup pass sees them, with 0 outside the block so that quads that
 // straddle its right or bottom edge and the neighbours of edge quads need no special cases: the
