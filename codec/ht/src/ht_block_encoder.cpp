@@ -128,6 +128,10 @@ HtBlock load_ht_block(const t1::FloatBlock& block) {
             std::vector<std::uint8_t>(n),
             std::vector<std::uint8_t>(n),
             0};
+  // Cold rows a plane's width apart: every line asked for up front (as t1's survey_float_block).
+  constexpr std::size_t kLine = 64 / sizeof(float);
+  for (int y = 0; y < block.height; ++y)
+    for (std::size_t x = 0; x < w; x += kLine) __builtin_prefetch(block.origin + y * block.stride + x);
   std::uint32_t all = 0;
   for (int y = 0; y < block.height; ++y) {
     const std::size_t base = static_cast<std::size_t>(y) * w;
