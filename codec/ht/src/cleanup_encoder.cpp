@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -36,6 +37,14 @@ class SampleGrid {
   // x in -2 .. width + 1, y in -1 .. height.
   int exponent_at(int x, int y) const { return exponents_[cell(x, y)]; }
   int significant(int x, int y) const { return exponent_at(x, y) != 0 ? 1 : 0; }
+  // Whether the 4x2 samples from (x0, y0) are all insignificant: a pair of quads (the border
+  // stands in for samples past the block's edges).
+  bool pair_empty(int x0, int y0) const {
+    std::uint32_t upper, lower;
+    std::memcpy(&upper, &exponents_[cell(x0, y0)], sizeof upper);
+    std::memcpy(&lower, &exponents_[cell(x0, y0 + 1)], sizeof lower);
+    return (upper | lower) == 0;
+  }
   // v_n = 2 (mu - 1) + s (T.814 7.3.8), for a significant sample.
   std::uint32_t magsgn_value(int x, int y) const {
     const std::size_t i = index(x, y);
@@ -255,6 +264,22 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
     // Quads go in pairs (T.814 7.3.1): both quads' significance, then their residuals, then MagSgn.
     for (int qx = 0; qx < quads_wide; qx += 2) {
       const int count = std::min(2, quads_wide - qx);
+      if (grid.pair_empty(2 * qx, 2 * qy)) {
+        // Neither quad has a significant sample: each sends its context's codeword for rho = 0, or
+        // a MEL 0 in context 0, and no residual or MagSgn bit (what analyse_quad and the steps
+        // below give for rho = 0, without them: most quads of a low-rate cleanup are empty).
+        for (int k = 0; k < count; ++k) {
+          const int x0 = 2 * (qx + k);
+          const int context = initial_row ? initial_row_context(grid, x0) : other_row_context(grid, x0, 2 * qy);
+          if (context == 0) {
+            mel.encode(false);
+          } else {
+            const VlcCode code = table.lookup(context, 0, false, 0);
+            vlc.put(code.codeword, code.length);
+          }
+        }
+        continue;
+      }
       std::array<QuadCoding, 2> quads;
       for (int k = 0; k < count; ++k) {
         QuadCoding& q = quads[static_cast<std::size_t>(k)];
