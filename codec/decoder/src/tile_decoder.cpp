@@ -1,10 +1,12 @@
 #include "tile_decoder.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <variant>
 
@@ -16,6 +18,7 @@
 #include "dwt/error.h"
 #include "dwt/geometry.h"
 #include "packet_reader.h"
+#include "sample_output.h"
 
 namespace codec::dec {
 
@@ -242,55 +245,107 @@ void inverse_dwt(Plane& plane, int levels, const TileDecodeSetup& setup) {
   }
 }
 
-// G.2: inverse RCT (reversible) or ICT (irreversible) on components 0..2.
-void inverse_component_transform(std::vector<Plane>& planes) {
-  Plane &p0 = planes[0], &p1 = planes[1], &p2 = planes[2];
-  if (p0.rect != p1.rect || p0.rect != p2.rect)
-    throw DecodeError("the component transform needs equal tile-components");
-  if (p0.reversible) {
-    for (std::size_t i = 0; i < p0.ints.size(); ++i) {
-      const std::int32_t y = p0.ints[i], cb = p1.ints[i], cr = p2.ints[i];
-      // G-7: G = Y - floor((Cb + Cr) / 4); R = Cr + G; B = Cb + G (arithmetic shift is floor).
-      const std::int32_t g = y - static_cast<std::int32_t>((static_cast<std::int64_t>(cb) + cr) >> 2);
-      p0.ints[i] = cr + g;
-      p1.ints[i] = g;
-      p2.ints[i] = cb + g;
-    }
-  } else {
-    for (std::size_t i = 0; i < p0.floats.size(); ++i) {
-      const float y = p0.floats[i], cb = p1.floats[i], cr = p2.floats[i];
-      // G-9 (Table G.? coefficients as T.800 gives them).
-      p0.floats[i] = y + 1.402f * cr;
-      p1.floats[i] = y - 0.34413f * cb - 0.71414f * cr;
-      p2.floats[i] = y + 1.772f * cb;
-    }
-  }
+// Rows [y0, y1) through fn(y), in bands of rows spread over the pool.
+template <class RowFunction>
+void for_rows(std::int64_t y0, std::int64_t y1, base::ThreadPool& pool, const RowFunction& fn) {
+  constexpr std::int64_t kRowsPerTask = 16;  // a few tens of KiB per task: little overhead per row
+  const auto tasks = static_cast<std::size_t>((y1 - y0 + kRowsPerTask - 1) / kRowsPerTask);
+  pool.parallel_for(tasks, [&](std::size_t k) {
+    const std::int64_t first = y0 + static_cast<std::int64_t>(k) * kRowsPerTask;
+    for (std::int64_t y = first; y < std::min(y1, first + kRowsPerTask); ++y) fn(y);
+  });
 }
 
-// G.1.2: level shift back to unsigned, then clamping to the component's range; the irreversible
-// path rounds to the nearest integer first.
-void store(const Plane& plane, const ComponentSize& size, DecodedComponent& out) {
-  const std::int64_t shift = size.is_signed ? 0 : (std::int64_t{1} << (size.precision - 1));
-  const std::int64_t lo = size.is_signed ? -(std::int64_t{1} << (size.precision - 1)) : 0;
-  const std::int64_t hi =
-      size.is_signed ? (std::int64_t{1} << (size.precision - 1)) - 1 : (std::int64_t{1} << size.precision) - 1;
-  const Rect area =
-      plane.rect.intersect(Rect{out.x0, out.y0, std::int64_t{out.x0} + out.width, std::int64_t{out.y0} + out.height});
-  for (std::int64_t y = area.y0; y < area.y1; ++y)
-    for (std::int64_t x = area.x0; x < area.x1; ++x) {
-      const std::size_t from = static_cast<std::size_t>(y - plane.rect.y0) * static_cast<std::size_t>(plane.width()) +
-                               static_cast<std::size_t>(x - plane.rect.x0);
-      std::int64_t v;
-      if (plane.reversible) {
-        v = plane.ints[from];
-      } else {
-        const float f = plane.floats[from];
-        v = std::isfinite(f) ? static_cast<std::int64_t>(std::lrint(std::clamp(f, -1e12f, 1e12f))) : 0;
-      }
-      v = std::clamp(v + shift, lo, hi);
-      out.samples[static_cast<std::size_t>(y - out.y0) * static_cast<std::size_t>(out.width) +
-                  static_cast<std::size_t>(x - out.x0)] = static_cast<std::int32_t>(v);
+// Sample (x, y) of a plane or an output component (their own grid's coordinates).
+template <class T, class Allocator>
+const T* plane_at(const std::vector<T, Allocator>& samples, const Plane& plane, std::int64_t x, std::int64_t y) {
+  return samples.data() + static_cast<std::size_t>(y - plane.rect.y0) * static_cast<std::size_t>(plane.width()) +
+         static_cast<std::size_t>(x - plane.rect.x0);
+}
+std::int32_t* output_at(DecodedComponent& out, std::int64_t x, std::int64_t y) {
+  return out.samples.data() + static_cast<std::size_t>(y - out.y0) * static_cast<std::size_t>(out.width) +
+         static_cast<std::size_t>(x - out.x0);
+}
+Rect output_rect(const DecodedComponent& out) {
+  return Rect{out.x0, out.y0, std::int64_t{out.x0} + out.width, std::int64_t{out.y0} + out.height};
+}
+
+// G.1.2 on one plane without a component transform: level shift, rounding (9/7) and clamping into
+// the part of the output component the plane covers.
+void store(const Plane& plane, const ComponentSize& size, DecodedComponent& out, base::ThreadPool& pool) {
+  const SampleRange range = sample_range(size.precision, size.is_signed);
+  const Rect area = plane.rect.intersect(output_rect(out));
+  if (area.empty()) return;
+  const auto n = static_cast<std::size_t>(area.width());
+  for_rows(area.y0, area.y1, pool, [&](std::int64_t y) {
+    if (plane.reversible)
+      ints_to_samples(plane_at(plane.ints, plane, area.x0, y), range, output_at(out, area.x0, y), n);
+    else
+      floats_to_samples(plane_at(plane.floats, plane, area.x0, y), range, output_at(out, area.x0, y), n);
+  });
+}
+
+// G.2 and G.1.2 on components 0..2 in one pass: the inverse RCT or ICT of the three planes, then
+// each output component's level shift, rounding and clamping. `outputs` holds the selected ones
+// (null: decoded for the transform only), all covering the same part of the planes.
+void store_transformed(const std::array<const Plane*, 3>& planes, const std::array<DecodedComponent*, 3>& outputs,
+                       const OutputRanges& ranges, const Rect& area, base::ThreadPool& pool) {
+  const Plane &p0 = *planes[0], &p1 = *planes[1], &p2 = *planes[2];
+  const auto n = static_cast<std::size_t>(area.width());
+  for_rows(area.y0, area.y1, pool, [&](std::int64_t y) {
+    OutputRows rows{};
+    for (std::size_t c = 0; c < 3; ++c) rows[c] = outputs[c] ? output_at(*outputs[c], area.x0, y) : nullptr;
+    if (p0.reversible)
+      rct_to_samples(plane_at(p0.ints, p0, area.x0, y), plane_at(p1.ints, p1, area.x0, y),
+                     plane_at(p2.ints, p2, area.x0, y), ranges, rows, n);
+    else
+      ict_to_samples(plane_at(p0.floats, p0, area.x0, y), plane_at(p1.floats, p1, area.x0, y),
+                     plane_at(p2.floats, p2, area.x0, y), ranges, rows, n);
+  });
+}
+
+// The tile's planes into the output image: components 0..2 through the inverse component
+// transform when `mct`, every selected component level-shifted and clamped; the rows on the pool.
+void store_tile(const std::vector<Plane>& planes, bool mct, const Siz& siz, const std::vector<bool>& selected,
+                DecodedImage& image, base::ThreadPool& pool) {
+  std::size_t first_plain = 0;  // components from here on have no component transform
+  if (mct) {
+    const Plane &p0 = planes[0], &p1 = planes[1], &p2 = planes[2];
+    if (p0.rect != p1.rect || p0.rect != p2.rect)
+      throw DecodeError("the component transform needs equal tile-components");
+    if (p0.reversible != p1.reversible || p0.reversible != p2.reversible)
+      throw DecodeError("the component transform needs components 0..2 all reversible or all irreversible");
+    std::array<DecodedComponent*, 3> outputs{};
+    OutputRanges ranges{};
+    for (std::size_t c = 0; c < 3; ++c) {
+      ranges[c] = sample_range(siz.components[c].precision, siz.components[c].is_signed);
+      if (selected[c]) outputs[c] = &image.components[c];
     }
+    // Components with other sampling factors may cover other parts of the planes: then one pass each.
+    std::optional<Rect> shared;
+    bool same_area = true;
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (!outputs[c]) continue;
+      const Rect own = p0.rect.intersect(output_rect(*outputs[c]));
+      if (!shared) shared = own;
+      same_area = same_area && own == *shared;
+    }
+    const std::array<const Plane*, 3> transformed{&p0, &p1, &p2};
+    if (same_area) {
+      if (shared && !shared->empty()) store_transformed(transformed, outputs, ranges, *shared, pool);
+    } else {
+      for (std::size_t c = 0; c < 3; ++c) {
+        if (!outputs[c]) continue;
+        std::array<DecodedComponent*, 3> one{};
+        one[c] = outputs[c];
+        const Rect own = p0.rect.intersect(output_rect(*outputs[c]));
+        if (!own.empty()) store_transformed(transformed, one, ranges, own, pool);
+      }
+    }
+    first_plain = 3;
+  }
+  for (std::size_t c = first_plain; c < planes.size(); ++c)
+    if (selected[c]) store(planes[c], siz.components[c], image.components[c], pool);
 }
 
 // The tile's packets in the order they were sent: COD's progression, or with POC (A.6.6, B.12.2)
@@ -483,9 +538,7 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
   }
   const auto transform_start = Clock::now();
   blocks.clear();
-  if (params.cod.mct == 1 && needed[0]) inverse_component_transform(planes);
-  for (std::size_t c = 0; c < planes.size(); ++c)
-    if (setup.selected[c]) store(planes[c], cs.siz.components[c], image.components[c]);
+  store_tile(planes, params.cod.mct == 1 && needed[0], cs.siz, setup.selected, image, *setup.pool);
   times.component_transform += ms_since(transform_start);
 }
 
