@@ -10,6 +10,7 @@
 #include "codec/dwt_choice/dwt_choice.h"
 #include "codestream_reader.h"
 #include "dwt_cpu/cpu_backend.h"
+#include "imageio/plane_memory.h"
 #include "jp2_colour.h"
 #include "jp2_reader.h"
 #include "tile_decoder.h"
@@ -87,8 +88,11 @@ DecodedImage allocate_image(const dec::Siz& siz, const Rect& window, const std::
     if (selected[c]) {
       out.width = static_cast<int>(reduced(area.x1, r) - out.x0);
       out.height = static_cast<int>(reduced(area.y1, r) - out.y0);
+      // Huge pages where the system offers them: a 2048x2048 component is 4096 ordinary pages, each
+      // faulted in and cleared on its first touch (imageio/plane_memory.h).
       if (with_samples)
-        out.samples.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height), 0);
+        imageio::resize_with_huge_pages(out.samples,
+                                        static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height));
     }
     img.components.push_back(std::move(out));
   }

@@ -17,6 +17,7 @@
 #include "codec/tier2/progression.h"
 #include "dwt/error.h"
 #include "dwt/geometry.h"
+#include "imageio/plane_memory.h"
 #include "packet_reader.h"
 #include "sample_output.h"
 
@@ -524,9 +525,9 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     const std::size_t n = static_cast<std::size_t>(plane.rect.width()) * static_cast<std::size_t>(plane.rect.height());
     const auto clear_start = Clock::now();  // the zeros of blocks tier-1 leaves out are its own
     if (plane.reversible)
-      plane.ints.assign(n, 0);
+      imageio::resize_with_huge_pages(plane.ints, n);
     else
-      plane.floats.assign(n, 0.0f);
+      imageio::resize_with_huge_pages(plane.floats, n);
     times.tier1 += ms_since(clear_start);
     decode_blocks(tc, params.components[c], size, reduce, tile_component_rect(setup.window, size.dx, size.dy), blocks,
                   plane, *setup.pool, times);
