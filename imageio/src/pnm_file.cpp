@@ -8,6 +8,7 @@
 #include "atomic_file.h"
 #include "file_bytes.h"
 #include "image_checks.h"
+#include "imageio/plane_memory.h"
 #include "imageio/pnm.h"
 
 namespace imageio {
@@ -32,6 +33,31 @@ std::vector<std::uint8_t> encode_pnm(const Image& image) {
     out.push_back(std::uint8_t(value & 0xff));
   }
   return out;
+}
+
+// The planes' samples interleaved into `out`, each in 1 byte or 2 big-endian ones (Wide), with
+// no branch per sample so that the compiler vectorises the loop: the range is checked afterwards,
+// against the largest sample seen as unsigned (a negative one is larger than any maxval).
+template <std::size_t Channels, bool Wide>
+std::uint32_t interleave(std::span<const std::span<const std::int32_t>> planes, std::size_t samples,
+                         std::uint8_t* out) {
+  const std::int32_t* p[Channels];
+  for (std::size_t c = 0; c < Channels; ++c) p[c] = planes[c].data();
+  std::uint32_t largest = 0;
+  constexpr std::size_t kBytes = Wide ? 2 : 1;
+  for (std::size_t i = 0; i < samples; ++i)
+    for (std::size_t c = 0; c < Channels; ++c) {
+      const auto v = static_cast<std::uint32_t>(p[c][i]);
+      largest = std::max(largest, v);
+      std::uint8_t* d = out + (i * Channels + c) * kBytes;
+      if constexpr (Wide) {
+        d[0] = static_cast<std::uint8_t>(v >> 8);
+        d[1] = static_cast<std::uint8_t>(v);
+      } else {
+        d[0] = static_cast<std::uint8_t>(v);
+      }
+    }
+  return largest;
 }
 
 }  // namespace
@@ -70,22 +96,29 @@ void write_pnm_planes(const std::string& path, int width, int height, int bits,
   const std::size_t samples = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   for (const auto& plane : planes)
     if (plane.size() != samples) throw IoError(path, "a plane does not hold width x height samples");
-  const auto maxval = static_cast<std::int32_t>((1u << bits) - 1);
+  const auto maxval = static_cast<std::uint32_t>((1u << bits) - 1);
   const bool wide = maxval > 255;
-  const std::string header = pnm_header(width, height, static_cast<int>(planes.size()), static_cast<unsigned>(maxval));
-  std::vector<std::uint8_t> out(header.size() + samples * planes.size() * (wide ? 2 : 1));
+  const std::string header = pnm_header(width, height, static_cast<int>(planes.size()), maxval);
+  // Every byte is written below: no zeroing pass, and huge pages for the raster's first touch.
+  std::vector<std::uint8_t, UninitialisedAllocator<std::uint8_t>> out;
+  resize_with_huge_pages(out, header.size() + samples * planes.size() * (wide ? 2 : 1));
   std::copy(header.begin(), header.end(), out.begin());
-  std::uint8_t* d = out.data() + header.size();
-  for (std::size_t i = 0; i < samples; ++i)
-    for (const auto& plane : planes) {
-      const std::int32_t v = plane[i];
-      if (v < 0 || v > maxval)
-        throw IoError(path, "sample " + std::to_string(i) + " has value " + std::to_string(v) + ", outside 0.." +
-                                std::to_string(maxval));
-      if (wide) *d++ = static_cast<std::uint8_t>(v >> 8);  // big-endian
-      *d++ = static_cast<std::uint8_t>(v & 0xFF);
-    }
-  detail::write_atomically(path, [&](const std::string& temporary) { detail::write_whole_file(path, temporary, out); });
+  std::uint8_t* raster = out.data() + header.size();
+  std::uint32_t largest = 0;
+  if (planes.size() == 3)
+    largest = wide ? interleave<3, true>(planes, samples, raster) : interleave<3, false>(planes, samples, raster);
+  else
+    largest = wide ? interleave<1, true>(planes, samples, raster) : interleave<1, false>(planes, samples, raster);
+  if (largest > maxval) {
+    for (std::size_t i = 0; i < samples; ++i)
+      for (const auto& plane : planes)
+        if (static_cast<std::uint32_t>(plane[i]) > maxval)
+          throw IoError(path, "sample " + std::to_string(i) + " has value " + std::to_string(plane[i]) +
+                                  ", outside 0.." + std::to_string(maxval));
+  }
+  detail::write_atomically(path, [&](const std::string& temporary) {
+    detail::write_whole_file(path, temporary, std::span<const std::uint8_t>(out.data(), out.size()));
+  });
 }
 
 }  // namespace imageio
