@@ -58,8 +58,10 @@ StepSize step_of(const Quantization& q, int levels, const Subband& band) {
 struct Plane {
   Rect rect;  // on the (reduced) component grid
   bool reversible = true;
-  std::vector<std::int32_t> ints;
-  std::vector<float> floats;
+  // Uninitialised: tier-1 writes every sample, the blocks it does not decode as zeros, each
+  // block's part on the thread that decodes it (decode_blocks).
+  std::vector<std::int32_t, imageio::UninitialisedAllocator<std::int32_t>> ints;
+  std::vector<float, imageio::UninitialisedAllocator<float>> floats;
   int width() const { return static_cast<int>(rect.width()); }
   int height() const { return static_cast<int>(rect.height()); }
 };
@@ -103,8 +105,8 @@ bool last_ht_set(const BlockState& st, int mb, codec::ht::HtCodewords& set) {
   return chosen >= 0;
 }
 
-// Tier-1 (EBCOT or HT) of one code-block into `block` (w*h), in the representation of
-// decode_code_block.
+// Tier-1 (EBCOT or HT) of one code-block into `block` (w*h, every sample written), in the
+// representation of decode_code_block.
 void decode_block(const BlockState& st, int mb, int w, int h, BandOrientation orientation,
                   const ComponentCoding& coding, std::vector<std::int32_t>& block) {
   if (!is_ht(coding)) {
@@ -113,7 +115,7 @@ void decode_block(const BlockState& st, int mb, int w, int h, BandOrientation or
     return;
   }
   codec::ht::HtCodewords set;
-  if (!last_ht_set(st, mb, set)) return;
+  if (!last_ht_set(st, mb, set)) return std::fill(block.begin(), block.end(), 0);
   if (set.cleanup_plane < 0 || set.cleanup_plane > kMaxTopPlane)
     throw DecodeError("an HT code-block's cleanup pass is on bit-plane " + std::to_string(set.cleanup_plane) + " (Mb " +
                       std::to_string(mb) + ", " + std::to_string(st.missing_msbs) + " missing MSBs)");
@@ -146,7 +148,47 @@ struct BlockTask {
   int x = 0, y = 0;      // top-left in the plane's Mallat layout
   float half_delta = 0;  // irreversible: half the quantisation step
   std::int32_t roi_threshold = 0;
+  bool decoded = true;  // false: no pass arrived, or the block cannot reach the window: zeros
 };
+
+// H.2: coefficients at or above 2^s (`threshold`, in the decoder's doubled representation) belong to
+// the region and were scaled up by s.
+void descale_roi(std::span<std::int32_t> block, std::int32_t threshold, int roi_shift) {
+  for (std::int32_t& v : block) {
+    const std::int32_t m = v < 0 ? -v : v;
+    if (m >= threshold) v = v < 0 ? -(m >> roi_shift) : (m >> roi_shift);
+  }
+}
+
+// A decoded w x h block's coefficients into its place in the plane, dequantised: the exact integer
+// (the half-step dropped) or the value times the quantisation step (E.1.1.2). No zeros: zero
+// coefficients are written as such, and left-out blocks by clear_block.
+void dequantise_block(std::span<const std::int32_t> block, int w, int h, const BlockTask& t, Plane& plane) {
+  const auto stride = static_cast<std::size_t>(plane.width()), width = static_cast<std::size_t>(w);
+  for (int y = 0; y < h; ++y) {
+    const std::int32_t* in = block.data() + static_cast<std::size_t>(y) * width;
+    const std::size_t at = static_cast<std::size_t>(t.y + y) * stride + static_cast<std::size_t>(t.x);
+    if (plane.reversible) {
+      std::int32_t* out = plane.ints.data() + at;
+      for (std::size_t x = 0; x < width; ++x) out[x] = in[x] / 2;
+    } else {
+      float* out = plane.floats.data() + at;
+      for (std::size_t x = 0; x < width; ++x) out[x] = static_cast<float>(in[x]) * t.half_delta;
+    }
+  }
+}
+
+// The w x h zeros of a block tier-1 leaves out.
+void clear_block(int w, int h, const BlockTask& t, Plane& plane) {
+  const auto stride = static_cast<std::size_t>(plane.width()), width = static_cast<std::size_t>(w);
+  for (int y = 0; y < h; ++y) {
+    const std::size_t at = static_cast<std::size_t>(t.y + y) * stride + static_cast<std::size_t>(t.x);
+    if (plane.reversible)
+      std::fill_n(plane.ints.data() + at, width, 0);
+    else
+      std::fill_n(plane.floats.data() + at, width, 0.0f);
+  }
+}
 
 // Tier-1 and dequantisation of every code-block of a tile-component that reaches `window`, into
 // its plane in the Mallat layout of the (reduced) inverse DWT, timed into `times`. The
@@ -158,6 +200,7 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
   const auto geometry =
       dwt::decomposition(plane.width(), plane.height(), dwt::Origin{plane.rect.x0, plane.rect.y0}, kept_levels);
   std::vector<BlockTask> tasks;
+  std::size_t covered = 0;  // samples of the plane the blocks cover
   for (int r = 0; r <= kept_levels; ++r) {
     const Resolution& res = tc.resolutions[static_cast<std::size_t>(r)];
     for (std::size_t bi = 0; bi < res.bands.size(); ++bi) {
@@ -180,7 +223,8 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
           if (pb.band != static_cast<int>(bi)) continue;
           for (const CodeBlock& cb : pb.blocks) {
             const BlockState& st = states[cb.index];
-            if (st.kept_passes == 0 || !reaches(cb.rect, band.level, window)) continue;
+            task.decoded = st.kept_passes > 0 && reaches(cb.rect, band.level, window);
+            covered += static_cast<std::size_t>(cb.rect.width()) * static_cast<std::size_t>(cb.rect.height());
             task.block = &cb;
             task.state = &st;
             task.x = layout.x + static_cast<int>(cb.rect.x0 - band.rect.x0);
@@ -191,28 +235,24 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
     }
   }
   const auto tier1_start = Clock::now();
+  // The code-blocks of the kept resolutions tile the plane (B.5, B.7), so that each sample is
+  // written by one task; should a geometry ever leave a gap, the plane is cleared first.
+  if (covered != static_cast<std::size_t>(plane.width()) * static_cast<std::size_t>(plane.height())) {
+    if (plane.reversible)
+      std::fill(plane.ints.begin(), plane.ints.end(), 0);
+    else
+      std::fill(plane.floats.begin(), plane.floats.end(), 0.0f);
+  }
   const int roi_shift = params.roi_shift;
   pool.parallel_for(tasks.size(), [&](std::size_t k) {
     const BlockTask& t = tasks[k];
     const int w = static_cast<int>(t.block->rect.width()), h = static_cast<int>(t.block->rect.height());
+    if (!t.decoded) return clear_block(w, h, t, plane);
     thread_local std::vector<std::int32_t> block;  // one per worker, reused from block to block
-    block.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
+    block.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));  // tier-1 writes every sample
     decode_block(*t.state, t.mb, w, h, t.orientation, params.coding, block);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        std::int32_t v = block[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)];
-        if (t.roi_threshold) {
-          // H.2: coefficients at or above 2^s belong to the region and were scaled up by s.
-          const std::int32_t m = v < 0 ? -v : v;
-          if (m >= t.roi_threshold) v = v < 0 ? -(m >> roi_shift) : (m >> roi_shift);
-        }
-        const std::size_t at = static_cast<std::size_t>(t.y + y) * static_cast<std::size_t>(plane.width()) +
-                               static_cast<std::size_t>(t.x + x);
-        if (plane.reversible)
-          plane.ints[at] = v / 2;  // the half-step dropped: the exact integer
-        else
-          plane.floats[at] = static_cast<float>(v) * t.half_delta;
-      }
+    if (t.roi_threshold) descale_roi(block, t.roi_threshold, roi_shift);
+    dequantise_block(block, w, h, t, plane);
   });
   times.tier1 += ms_since(tier1_start);
 }
@@ -523,7 +563,7 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     plane.rect = tc.resolutions[static_cast<std::size_t>(tc.levels - reduce)].rect;
     plane.reversible = params.components[c].coding.reversible;
     const std::size_t n = static_cast<std::size_t>(plane.rect.width()) * static_cast<std::size_t>(plane.rect.height());
-    const auto clear_start = Clock::now();  // the zeros of blocks tier-1 leaves out are its own
+    const auto clear_start = Clock::now();  // allocating the plane is tier-1's
     if (plane.reversible)
       imageio::resize_with_huge_pages(plane.ints, n);
     else
