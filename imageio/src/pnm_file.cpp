@@ -10,6 +10,7 @@
 #include "image_checks.h"
 #include "imageio/plane_memory.h"
 #include "imageio/pnm.h"
+#include "pnm_interleave.h"
 
 namespace imageio {
 namespace {
@@ -35,29 +36,15 @@ std::vector<std::uint8_t> encode_pnm(const Image& image) {
   return out;
 }
 
-// The planes' samples interleaved into `out`, each in 1 byte or 2 big-endian ones (Wide), with
-// no branch per sample so that the compiler vectorises the loop: the range is checked afterwards,
-// against the largest sample seen as unsigned (a negative one is larger than any maxval).
-template <std::size_t Channels, bool Wide>
-std::uint32_t interleave(std::span<const std::span<const std::int32_t>> planes, std::size_t samples,
-                         std::uint8_t* out) {
-  const std::int32_t* p[Channels];
-  for (std::size_t c = 0; c < Channels; ++c) p[c] = planes[c].data();
-  std::uint32_t largest = 0;
-  constexpr std::size_t kBytes = Wide ? 2 : 1;
-  for (std::size_t i = 0; i < samples; ++i)
-    for (std::size_t c = 0; c < Channels; ++c) {
-      const auto v = static_cast<std::uint32_t>(p[c][i]);
-      largest = std::max(largest, v);
-      std::uint8_t* d = out + (i * Channels + c) * kBytes;
-      if constexpr (Wide) {
-        d[0] = static_cast<std::uint8_t>(v >> 8);
-        d[1] = static_cast<std::uint8_t>(v);
-      } else {
-        d[0] = static_cast<std::uint8_t>(v);
-      }
-    }
-  return largest;
+// The IoError for the first sample of pixels [first, first + n) outside 0..maxval.
+[[noreturn]] void throw_first_outside(const std::string& path, std::span<const std::span<const std::int32_t>> planes,
+                                      std::size_t first, std::size_t n, std::uint32_t maxval) {
+  for (std::size_t i = first; i < first + n; ++i)
+    for (const auto& plane : planes)
+      if (static_cast<std::uint32_t>(plane[i]) > maxval)
+        throw IoError(path, "sample " + std::to_string(i) + " has value " + std::to_string(plane[i]) + ", outside 0.." +
+                                std::to_string(maxval));
+  throw IoError(path, "a sample is outside 0.." + std::to_string(maxval));
 }
 
 }  // namespace
@@ -98,27 +85,38 @@ void write_pnm_planes(const std::string& path, int width, int height, int bits,
     if (plane.size() != samples) throw IoError(path, "a plane does not hold width x height samples");
   const auto maxval = static_cast<std::uint32_t>((1u << bits) - 1);
   const bool wide = maxval > 255;
-  const std::string header = pnm_header(width, height, static_cast<int>(planes.size()), maxval);
-  // Every byte is written below: no zeroing pass, and huge pages for the raster's first touch.
-  std::vector<std::uint8_t, UninitialisedAllocator<std::uint8_t>> out;
-  resize_with_huge_pages(out, header.size() + samples * planes.size() * (wide ? 2 : 1));
-  std::copy(header.begin(), header.end(), out.begin());
-  std::uint8_t* raster = out.data() + header.size();
-  std::uint32_t largest = 0;
-  if (planes.size() == 3)
-    largest = wide ? interleave<3, true>(planes, samples, raster) : interleave<3, false>(planes, samples, raster);
-  else
-    largest = wide ? interleave<1, true>(planes, samples, raster) : interleave<1, false>(planes, samples, raster);
-  if (largest > maxval) {
-    for (std::size_t i = 0; i < samples; ++i)
-      for (const auto& plane : planes)
-        if (static_cast<std::uint32_t>(plane[i]) > maxval)
-          throw IoError(path, "sample " + std::to_string(i) + " has value " + std::to_string(plane[i]) +
-                                  ", outside 0.." + std::to_string(maxval));
-  }
-  detail::write_atomically(path, [&](const std::string& temporary) {
-    detail::write_whole_file(path, temporary, std::span<const std::uint8_t>(out.data(), out.size()));
-  });
+  const std::size_t channels = planes.size(), pixel_bytes = channels * (wide ? 2 : 1);
+  const std::string header = pnm_header(width, height, static_cast<int>(channels), maxval);
+
+  // The raster is made and written a chunk at a time, each interleaved while the last is in the
+  // page cache: no whole-image buffer to fault in. A sample out of range ends the write, and the
+  // atomic write then leaves no file.
+  constexpr std::size_t kChunkPixels = std::size_t{1} << 16;
+  std::vector<std::uint8_t, UninitialisedAllocator<std::uint8_t>> chunk(kChunkPixels * pixel_bytes);
+  std::size_t next = 0;  // the first pixel of the next chunk
+  bool header_written = false;
+  auto next_chunk = [&]() -> std::span<const std::uint8_t> {
+    if (!header_written) {
+      header_written = true;
+      return {reinterpret_cast<const std::uint8_t*>(header.data()), header.size()};
+    }
+    const std::size_t first = next, n = std::min(kChunkPixels, samples - next);
+    if (n == 0) return {};
+    next += n;
+    const std::int32_t* p0 = planes[0].data() + first;
+    std::uint32_t largest = 0;
+    if (channels == 3) {
+      const std::int32_t *p1 = planes[1].data() + first, *p2 = planes[2].data() + first;
+      largest = wide ? detail::interleave_rgb16(p0, p1, p2, chunk.data(), n)
+                     : detail::interleave_rgb8(p0, p1, p2, chunk.data(), n);
+    } else {
+      largest = wide ? detail::interleave_grey16(p0, chunk.data(), n) : detail::interleave_grey8(p0, chunk.data(), n);
+    }
+    if (largest > maxval) throw_first_outside(path, planes, first, n, maxval);
+    return {chunk.data(), n * pixel_bytes};
+  };
+  detail::write_atomically(
+      path, [&](const std::string& temporary) { detail::write_file_in_chunks(path, temporary, next_chunk); });
 }
 
 }  // namespace imageio
