@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <vector>
 
 #include "codec/decoder/decoder.h"
@@ -181,8 +182,8 @@ class BlockDecoder {
         const unsigned due = column::significant_rows(word) & ~(word >> 24) & 0xFu;
         if (due == 0) continue;
         std::uint32_t refined = 0;
-        for (int r = 0; r < 4; ++r) {
-          if (!(due & (1u << r))) continue;
+        for (unsigned rows_left = due; rows_left != 0; rows_left &= rows_left - 1) {
+          const int r = std::countr_zero(rows_left);  // the due rows only, top to bottom
           const int bit = s.decision(t1::refinement_context(word, r));
           refined |= column::refined(r);
           // The interval halves: its middle moves up or down by a quarter of the old width.
@@ -209,19 +210,19 @@ class BlockDecoder {
         int r = 0;
         if (rows == 4) {
           const std::uint32_t word = *w;
-          // Each of the four significant or coded by the significance pass: only the marks to clear.
-          if (((column::significant_rows(word) | (word >> 24)) & 0xFu) == 0xFu) {
-            *w = word & ~column::kVisitedAll;
-            continue;
-          }
           // Run-length mode: none of the four significant or visited, and all with the all-zero
-          // neighbourhood (zero-coding context 0 in every orientation).
+          // neighbourhood (zero-coding context 0 in every orientation). Tested first: at low rates
+          // most columns are such, and this test is the cheaper one.
           if ((word & (column::kWindow | column::kVisitedAll)) == 0) {
             if (!mq.decode(cx_[t1::kRunLengthContext])) continue;  // four insignificant samples
             r = mq.decode(cx_[t1::kUniformContext]) << 1;
             r |= mq.decode(cx_[t1::kUniformContext]);
             become_significant(w, r, top + x + r * w_, s.sign(column::sign_index(w, r)), plane);
             ++r;
+          } else if (((column::significant_rows(word) | (word >> 24)) & 0xFu) == 0xFu) {
+            // Each of the four significant or coded by the significance pass: only the marks to clear.
+            *w = word & ~column::kVisitedAll;
+            continue;
           }
         }
         for (; r < rows; ++r) {
