@@ -148,7 +148,20 @@ class BlockDecoder {
     *value = negative ? -magnitude : magnitude;
   }
 
-  // D.3.1: insignificant samples with at least one significant neighbour.
+  // D.3.1 on row r of the column at `w` (`column_top` its row 0 in the output): an insignificant
+  // sample with at least one significant neighbour.
+  template <class Symbols>
+  [[gnu::always_inline]] void significance_row(std::uint32_t* w, int r, std::int32_t* column_top, int plane,
+                                               Symbols& s) {
+    const std::uint32_t around = *w >> (3 * r);  // reloaded: the row above may have changed it
+    if ((around & column::kCentre) || !(around & column::kNeighbours)) return;
+    *w |= column::visited(r);
+    if (s.decision(zc_[around & column::kNeighbourhood]))
+      become_significant(w, r, column_top + r * w_, s.sign(column::sign_index(w, r)), plane);
+  }
+
+  // D.3.1: insignificant samples with at least one significant neighbour. A full stripe's four
+  // rows are written out, so that each row's shifts and masks are constants.
   template <class Symbols>
   void significance_pass(int plane, Symbols s) {
     for (int y0 = 0; y0 < h_; y0 += 4) {
@@ -158,12 +171,13 @@ class BlockDecoder {
       for (int x = 0; x < w_; ++x) {
         std::uint32_t* w = words + x;
         if ((*w & column::kWindow) == 0) continue;  // no significant neighbour anywhere
-        for (int r = 0; r < rows; ++r) {
-          const std::uint32_t around = *w >> (3 * r);  // reloaded: the row above may have changed it
-          if ((around & column::kCentre) || !(around & column::kNeighbours)) continue;
-          *w |= column::visited(r);
-          if (s.decision(zc_[around & column::kNeighbourhood]))
-            become_significant(w, r, top + x + r * w_, s.sign(column::sign_index(w, r)), plane);
+        if (rows == 4) {
+          significance_row(w, 0, top + x, plane, s);
+          significance_row(w, 1, top + x, plane, s);
+          significance_row(w, 2, top + x, plane, s);
+          significance_row(w, 3, top + x, plane, s);
+        } else {
+          for (int r = 0; r < rows; ++r) significance_row(w, r, top + x, plane, s);
         }
       }
     }
@@ -196,6 +210,16 @@ class BlockDecoder {
     }
   }
 
+  // D.3.4 on row r of the column at `w` (`column_top` its row 0 in the output), outside run-length
+  // mode: a sample neither significant nor coded by this bit-plane's significance pass.
+  [[gnu::always_inline]] void cleanup_row(std::uint32_t* w, int r, std::int32_t* column_top, int plane,
+                                          MqSymbols& s) {
+    const std::uint32_t word = *w;  // reloaded: the row above may have changed it
+    if (word & (column::self(r) | column::visited(r))) return;
+    if (s.decision(zc_[(word >> (3 * r)) & column::kNeighbourhood]))
+      become_significant(w, r, column_top + r * w_, s.sign(column::sign_index(w, r)), plane);
+  }
+
   // D.3.4: everything the significance pass left, with run-length decoding of quiet stripe
   // columns; then the segmentation symbol of D.5.
   [[gnu::flatten]] void cleanup_pass(int plane) {
@@ -225,11 +249,25 @@ class BlockDecoder {
             continue;
           }
         }
-        for (; r < rows; ++r) {
-          const std::uint32_t word = *w;
-          if (word & (column::self(r) | column::visited(r))) continue;
-          if (mq.decode(cx_[zc_[(word >> (3 * r)) & column::kNeighbourhood]]))
-            become_significant(w, r, top + x + r * w_, s.sign(column::sign_index(w, r)), plane);
+        if (rows == 4) {
+          switch (r) {  // a full stripe's rows written out from r on: constant shifts and masks
+            case 0:
+              cleanup_row(w, 0, top + x, plane, s);
+              [[fallthrough]];
+            case 1:
+              cleanup_row(w, 1, top + x, plane, s);
+              [[fallthrough]];
+            case 2:
+              cleanup_row(w, 2, top + x, plane, s);
+              [[fallthrough]];
+            case 3:
+              cleanup_row(w, 3, top + x, plane, s);
+              break;
+            default:
+              break;
+          }
+        } else {
+          for (; r < rows; ++r) cleanup_row(w, r, top + x, plane, s);
         }
         *w &= ~column::kVisitedAll;
       }
