@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <vector>
 
 #include "codec/decoder/decoder.h"
@@ -183,6 +182,18 @@ class BlockDecoder {
     }
   }
 
+  // D.3.3 on row r of a column whose word is `word` (`column_top` its row 0 in the output): the
+  // refinement bit of a sample significant before this bit-plane, context by Table D.4.
+  template <class Symbols>
+  [[gnu::always_inline]] static void refine_row(std::uint32_t word, int r, std::int32_t* column_top,
+                                                std::int32_t half, Symbols& s, int width) {
+    const int bit = s.decision(t1::refinement_context(word, r));
+    // The interval halves: its middle moves up or down by a quarter of the old width.
+    std::int32_t& v = column_top[r * width];
+    const std::int32_t step = bit ? half : -half;
+    v += v < 0 ? -step : step;
+  }
+
   // D.3.3: samples significant before this bit-plane; context by Table D.4.
   template <class Symbols>
   void refinement_pass(int plane, Symbols s) {
@@ -195,17 +206,12 @@ class BlockDecoder {
         // Significant before this plane: significant, and not made so by this plane's first pass.
         const unsigned due = column::significant_rows(word) & ~(word >> 24) & 0xFu;
         if (due == 0) continue;
-        std::uint32_t refined = 0;
-        for (unsigned rows_left = due; rows_left != 0; rows_left &= rows_left - 1) {
-          const int r = std::countr_zero(rows_left);  // the due rows only, top to bottom
-          const int bit = s.decision(t1::refinement_context(word, r));
-          refined |= column::refined(r);
-          // The interval halves: its middle moves up or down by a quarter of the old width.
-          std::int32_t& v = top[x + r * w_];
-          const std::int32_t step = bit ? half : -half;
-          v += v < 0 ? -step : step;
-        }
-        words[x] = word | refined;
+        // The four rows written out: constant shifts and masks in each.
+        if (due & 1u) refine_row(word, 0, top + x, half, s, w_);
+        if (due & 2u) refine_row(word, 1, top + x, half, s, w_);
+        if (due & 4u) refine_row(word, 2, top + x, half, s, w_);
+        if (due & 8u) refine_row(word, 3, top + x, half, s, w_);
+        words[x] = word | due * column::refined(0);  // refined(r) = refined(0) << r, for each due row r
       }
     }
   }
