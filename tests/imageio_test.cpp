@@ -324,8 +324,7 @@ TEST_F(ImageIoTest, PnmPlanesWriteWhatWritePnmWrites) {
       for (const std::int32_t bad : {-1, (1 << bits)}) {
         planes.back()[100] = bad;
         const std::string file = path("bad.pnm");
-        const std::string message =
-            expect_io_error(file, [&] { imageio::write_pnm_planes(file, 37, 5, bits, spans); });
+        const std::string message = expect_io_error(file, [&] { imageio::write_pnm_planes(file, 37, 5, bits, spans); });
         EXPECT_NE(message.find("sample 100 has value " + std::to_string(bad)), std::string::npos) << message;
         EXPECT_FALSE(std::filesystem::exists(file));
         planes.back()[100] = 0;

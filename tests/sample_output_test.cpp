@@ -18,8 +18,8 @@ namespace {
 
 using codec::dec::OutputRanges;
 using codec::dec::OutputRows;
-using codec::dec::SampleRange;
 using codec::dec::sample_range;
+using codec::dec::SampleRange;
 
 // Ranges of 8-bit to 31-bit, signed and unsigned components, with those too wide for float lanes.
 std::vector<SampleRange> ranges() {
@@ -35,12 +35,23 @@ std::vector<float> random_floats(std::mt19937& rng, std::size_t n, float scale) 
   std::vector<float> v(n);
   for (float& f : v) {
     switch (kind(rng)) {
-      case 0: f = std::numeric_limits<float>::quiet_NaN(); break;
-      case 1: f = kind(rng) < 8 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity(); break;
-      case 2: f = std::floor(value(rng)) + 0.5f; break;  // a tie
-      case 3: f = std::nextafter(0.5f, 0.0f) + std::floor(value(rng)); break;
-      case 4: f = value(rng) * 1e9f; break;
-      default: f = value(rng);
+      case 0:
+        f = std::numeric_limits<float>::quiet_NaN();
+        break;
+      case 1:
+        f = kind(rng) < 8 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity();
+        break;
+      case 2:
+        f = std::floor(value(rng)) + 0.5f;
+        break;  // a tie
+      case 3:
+        f = std::nextafter(0.5f, 0.0f) + std::floor(value(rng));
+        break;
+      case 4:
+        f = value(rng) * 1e9f;
+        break;
+      default:
+        f = value(rng);
     }
   }
   return v;
@@ -70,7 +81,12 @@ TEST(SampleOutput, RangesFollowTheComponentPrecision) {
 
 TEST(SampleOutput, ReferenceRowsMatchHandWorkedValues) {
   const SampleRange u8 = sample_range(8, false);
-  const float floats[] = {2.5f, 3.5f, -0.5f, -128.7f, 200.0f, std::numeric_limits<float>::quiet_NaN(),
+  const float floats[] = {2.5f,
+                          3.5f,
+                          -0.5f,
+                          -128.7f,
+                          200.0f,
+                          std::numeric_limits<float>::quiet_NaN(),
                           std::numeric_limits<float>::infinity()};
   std::int32_t out[7];
   codec::dec::reference::floats_to_samples(floats, u8, out, 7);

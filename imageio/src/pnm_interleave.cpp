@@ -17,7 +17,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 // truncated to its low byte, as the scalar tail does (the caller refuses the raster then).
 template <class DI>
 HWY_INLINE hn::Vec<hn::Rebind<std::uint8_t, DI>> LowBytes(DI di, hn::Vec<DI> v,
-                                                         hn::Vec<hn::RebindToUnsigned<DI>>& largest) {
+                                                          hn::Vec<hn::RebindToUnsigned<DI>>& largest) {
   largest = hn::Max(largest, hn::BitCast(hn::RebindToUnsigned<DI>(), v));
   return hn::DemoteTo(hn::Rebind<std::uint8_t, DI>(), hn::And(v, hn::Set(di, 0xFF)));
 }

@@ -185,8 +185,8 @@ class BlockDecoder {
   // D.3.3 on row r of a column whose word is `word` (`column_top` its row 0 in the output): the
   // refinement bit of a sample significant before this bit-plane, context by Table D.4.
   template <class Symbols>
-  [[gnu::always_inline]] static void refine_row(std::uint32_t word, int r, std::int32_t* column_top,
-                                                std::int32_t half, Symbols& s, int width) {
+  [[gnu::always_inline]] static void refine_row(std::uint32_t word, int r, std::int32_t* column_top, std::int32_t half,
+                                                Symbols& s, int width) {
     const int bit = s.decision(t1::refinement_context(word, r));
     // The interval halves: its middle moves up or down by a quarter of the old width.
     std::int32_t& v = column_top[r * width];
@@ -218,8 +218,7 @@ class BlockDecoder {
 
   // D.3.4 on row r of the column at `w` (`column_top` its row 0 in the output), outside run-length
   // mode: a sample neither significant nor coded by this bit-plane's significance pass.
-  [[gnu::always_inline]] void cleanup_row(std::uint32_t* w, int r, std::int32_t* column_top, int plane,
-                                          MqSymbols& s) {
+  [[gnu::always_inline]] void cleanup_row(std::uint32_t* w, int r, std::int32_t* column_top, int plane, MqSymbols& s) {
     const std::uint32_t word = *w;  // reloaded: the row above may have changed it
     if (word & (column::self(r) | column::visited(r))) return;
     if (s.decision(zc_[(word >> (3 * r)) & column::kNeighbourhood]))

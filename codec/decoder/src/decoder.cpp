@@ -178,8 +178,8 @@ std::vector<std::uint8_t> file_bytes(const std::string& path, std::size_t max_me
   if (std::filesystem::is_directory(path, error)) throw DecodeError("is a directory, not a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw DecodeError("cannot open the file");
-  const auto size = std::filesystem::is_regular_file(path, error) ? std::filesystem::file_size(path, error)
-                                                                   : std::uintmax_t{0};
+  const auto size =
+      std::filesystem::is_regular_file(path, error) ? std::filesystem::file_size(path, error) : std::uintmax_t{0};
   if (error || size == 0) {
     std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (in.bad()) throw DecodeError("cannot read the file");

@@ -57,8 +57,8 @@ void rct_to_samples(const std::int32_t* y, const std::int32_t* cb, const std::in
   }
 }
 
-void ict_to_samples(const float* y, const float* cb, const float* cr, const OutputRanges& ranges,
-                    const OutputRows& out, std::size_t n) {
+void ict_to_samples(const float* y, const float* cb, const float* cr, const OutputRanges& ranges, const OutputRows& out,
+                    std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) {
     // G-9, with T.800's coefficients; multiplied and added in this order, without contraction
     // (CMakeLists), as the vector rows do.

@@ -30,8 +30,8 @@ void floats_to_samples(const float* in, const SampleRange& range, std::int32_t* 
 // n samples of components 0..2 through the inverse RCT (G-7) or ICT (G-9).
 void rct_to_samples(const std::int32_t* y, const std::int32_t* cb, const std::int32_t* cr, const OutputRanges& ranges,
                     const OutputRows& out, std::size_t n);
-void ict_to_samples(const float* y, const float* cb, const float* cr, const OutputRanges& ranges,
-                    const OutputRows& out, std::size_t n);
+void ict_to_samples(const float* y, const float* cb, const float* cr, const OutputRanges& ranges, const OutputRows& out,
+                    std::size_t n);
 
 // The scalar rows, one sample at a time as the decoder stored them before the vectorised pass:
 // the definition the rows above must meet (sample_output_test), and what they fall back to where
@@ -41,8 +41,8 @@ void ints_to_samples(const std::int32_t* in, const SampleRange& range, std::int3
 void floats_to_samples(const float* in, const SampleRange& range, std::int32_t* out, std::size_t n);
 void rct_to_samples(const std::int32_t* y, const std::int32_t* cb, const std::int32_t* cr, const OutputRanges& ranges,
                     const OutputRows& out, std::size_t n);
-void ict_to_samples(const float* y, const float* cb, const float* cr, const OutputRanges& ranges,
-                    const OutputRows& out, std::size_t n);
+void ict_to_samples(const float* y, const float* cb, const float* cr, const OutputRanges& ranges, const OutputRows& out,
+                    std::size_t n);
 }  // namespace reference
 
 }  // namespace codec::dec

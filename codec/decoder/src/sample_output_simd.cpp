@@ -83,8 +83,7 @@ void RctToSamples(const std::int32_t* HWY_RESTRICT y, const std::int32_t* HWY_RE
     if (out[1]) hn::StoreU(g_bounds(g), di, out[1] + i);
     if (out[2]) hn::StoreU(b_bounds(hn::Add(vcb, g)), di, out[2] + i);
   }
-  const OutputRows rest = {out[0] ? out[0] + i : nullptr, out[1] ? out[1] + i : nullptr,
-                           out[2] ? out[2] + i : nullptr};
+  const OutputRows rest = {out[0] ? out[0] + i : nullptr, out[1] ? out[1] + i : nullptr, out[2] ? out[2] + i : nullptr};
   reference::rct_to_samples(y + i, cb + i, cr + i, ranges, rest, n - i);
 }
 
@@ -106,8 +105,7 @@ void IctToSamples(const float* HWY_RESTRICT y, const float* HWY_RESTRICT cb, con
     if (out[1]) hn::StoreU(g_bounds(hn::Sub(hn::Sub(vy, hn::Mul(g_cb, vcb)), hn::Mul(g_cr, vcr))), di, out[1] + i);
     if (out[2]) hn::StoreU(b_bounds(hn::Add(vy, hn::Mul(b_cb, vcb))), di, out[2] + i);
   }
-  const OutputRows rest = {out[0] ? out[0] + i : nullptr, out[1] ? out[1] + i : nullptr,
-                           out[2] ? out[2] + i : nullptr};
+  const OutputRows rest = {out[0] ? out[0] + i : nullptr, out[1] ? out[1] + i : nullptr, out[2] ? out[2] + i : nullptr};
   reference::ict_to_samples(y + i, cb + i, cr + i, ranges, rest, n - i);
 }
 
@@ -145,8 +143,8 @@ void rct_to_samples(const std::int32_t* y, const std::int32_t* cb, const std::in
   HWY_DYNAMIC_DISPATCH(RctToSamples)(y, cb, cr, ranges, out, n);
 }
 
-void ict_to_samples(const float* y, const float* cb, const float* cr, const OutputRanges& ranges,
-                    const OutputRows& out, std::size_t n) {
+void ict_to_samples(const float* y, const float* cb, const float* cr, const OutputRanges& ranges, const OutputRows& out,
+                    std::size_t n) {
   if (!floats_hold(ranges[0]) || !floats_hold(ranges[1]) || !floats_hold(ranges[2]))
     return reference::ict_to_samples(y, cb, cr, ranges, out, n);
   HWY_DYNAMIC_DISPATCH(IctToSamples)(y, cb, cr, ranges, out, n);
