@@ -203,6 +203,8 @@ class BlockDecoder {
       std::int32_t* top = out_ + static_cast<std::ptrdiff_t>(y0) * w_;
       for (int x = 0; x < w_; ++x) {
         const std::uint32_t word = words[x];  // refinement changes no significance: one load does
+        // None significant, at low rates most columns: skipped before the due rows are worked out.
+        if ((word & column::kSelfAll) == 0) continue;
         // Significant before this plane: significant, and not made so by this plane's first pass.
         const unsigned due = column::significant_rows(word) & ~(word >> 24) & 0xFu;
         if (due == 0) continue;
