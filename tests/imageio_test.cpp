@@ -11,6 +11,7 @@
 #include <iterator>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -302,6 +303,33 @@ TEST_F(ImageIoTest, PnmRoundTripIsExact) {
     }
   }
   EXPECT_EQ(files_in_dir().size(), 2u);
+}
+
+// write_pnm_planes (a decoder's integer planes) writes the bytes write_pnm writes for the same
+// samples, for 1 and 3 planes of 8 and 16 bits; a sample outside 0..maxval, negative or too large,
+// is an IoError naming it, and leaves no file.
+TEST_F(ImageIoTest, PnmPlanesWriteWhatWritePnmWrites) {
+  for (const int bits : {8, 12, 16})
+    for (const int channels : {1, 3}) {
+      SCOPED_TRACE(std::to_string(bits) + " bits, " + std::to_string(channels) + " planes");
+      const imageio::Image original = pnm_image(37, 5, channels, bits);
+      std::vector<std::vector<std::int32_t>> planes(static_cast<std::size_t>(channels));
+      for (std::size_t i = 0; i < original.pixels.size(); ++i)
+        planes[i % static_cast<std::size_t>(channels)].push_back(static_cast<std::int32_t>(original.pixels[i]));
+      const std::vector<std::span<const std::int32_t>> spans(planes.begin(), planes.end());
+      imageio::write_pnm(path("whole.pnm"), original);
+      imageio::write_pnm_planes(path("planes.pnm"), 37, 5, bits, spans);
+      EXPECT_EQ(read_bytes(path("planes.pnm")), read_bytes(path("whole.pnm")));
+
+      for (const std::int32_t bad : {-1, (1 << bits)}) {
+        planes.back()[100] = bad;
+        const std::string file = path("bad.pnm");
+        const std::string message = expect_io_error(file, [&] { imageio::write_pnm_planes(file, 37, 5, bits, spans); });
+        EXPECT_NE(message.find("sample 100 has value " + std::to_string(bad)), std::string::npos) << message;
+        EXPECT_FALSE(std::filesystem::exists(file));
+        planes.back()[100] = 0;
+      }
+    }
 }
 
 TEST_F(ImageIoTest, Pnm16BitSamplesAreBigEndian) {

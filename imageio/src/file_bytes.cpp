@@ -57,11 +57,21 @@ FileBytes::~FileBytes() {
 }
 
 void write_whole_file(const std::string& path, const std::string& file_name, std::span<const std::uint8_t> bytes) {
+  bool written = false;
+  write_file_in_chunks(path, file_name, [&] {
+    const std::span<const std::uint8_t> chunk = written ? std::span<const std::uint8_t>() : bytes;
+    written = true;
+    return chunk;
+  });
+}
+
+void write_file_in_chunks(const std::string& path, const std::string& file_name,
+                          const std::function<std::span<const std::uint8_t>()>& next_chunk) {
   FilePtr file(std::fopen(file_name.c_str(), "wb"), &std::fclose);
   if (!file) throw IoError(path, std::string("cannot open for writing: ") + std::strerror(errno));
-  if (std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
-    throw IoError(path, std::string("write error: ") + std::strerror(errno));
-  }
+  for (std::span<const std::uint8_t> chunk = next_chunk(); !chunk.empty(); chunk = next_chunk())
+    if (std::fwrite(chunk.data(), 1, chunk.size(), file.get()) != chunk.size())
+      throw IoError(path, std::string("write error: ") + std::strerror(errno));
   // fclose flushes; a full disk may only show up here.
   if (std::fclose(file.release()) != 0) {
     throw IoError(path, std::string("write error: ") + std::strerror(errno));

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -35,5 +36,10 @@ class FileBytes {
 // Writes `bytes` to `file_name` (typically the temporary of
 // write_atomically); messages name `path`, the file the caller asked for.
 void write_whole_file(const std::string& path, const std::string& file_name, std::span<const std::uint8_t> bytes);
+
+// The same for a file made chunk by chunk: writes what `next_chunk` returns until it returns an
+// empty span (an exception from it ends the write), so that a large raster need not exist whole.
+void write_file_in_chunks(const std::string& path, const std::string& file_name,
+                          const std::function<std::span<const std::uint8_t>()>& next_chunk);
 
 }  // namespace imageio::detail

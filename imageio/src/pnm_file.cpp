@@ -8,7 +8,9 @@
 #include "atomic_file.h"
 #include "file_bytes.h"
 #include "image_checks.h"
+#include "imageio/plane_memory.h"
 #include "imageio/pnm.h"
+#include "pnm_interleave.h"
 
 namespace imageio {
 namespace {
@@ -32,6 +34,17 @@ std::vector<std::uint8_t> encode_pnm(const Image& image) {
     out.push_back(std::uint8_t(value & 0xff));
   }
   return out;
+}
+
+// The IoError for the first sample of pixels [first, first + n) outside 0..maxval.
+[[noreturn]] void throw_first_outside(const std::string& path, std::span<const std::span<const std::int32_t>> planes,
+                                      std::size_t first, std::size_t n, std::uint32_t maxval) {
+  for (std::size_t i = first; i < first + n; ++i)
+    for (const auto& plane : planes)
+      if (static_cast<std::uint32_t>(plane[i]) > maxval)
+        throw IoError(path, "sample " + std::to_string(i) + " has value " + std::to_string(plane[i]) + ", outside 0.." +
+                                std::to_string(maxval));
+  throw IoError(path, "a sample is outside 0.." + std::to_string(maxval));
 }
 
 }  // namespace
@@ -70,22 +83,40 @@ void write_pnm_planes(const std::string& path, int width, int height, int bits,
   const std::size_t samples = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   for (const auto& plane : planes)
     if (plane.size() != samples) throw IoError(path, "a plane does not hold width x height samples");
-  const auto maxval = static_cast<std::int32_t>((1u << bits) - 1);
+  const auto maxval = static_cast<std::uint32_t>((1u << bits) - 1);
   const bool wide = maxval > 255;
-  const std::string header = pnm_header(width, height, static_cast<int>(planes.size()), static_cast<unsigned>(maxval));
-  std::vector<std::uint8_t> out(header.size() + samples * planes.size() * (wide ? 2 : 1));
-  std::copy(header.begin(), header.end(), out.begin());
-  std::uint8_t* d = out.data() + header.size();
-  for (std::size_t i = 0; i < samples; ++i)
-    for (const auto& plane : planes) {
-      const std::int32_t v = plane[i];
-      if (v < 0 || v > maxval)
-        throw IoError(path, "sample " + std::to_string(i) + " has value " + std::to_string(v) + ", outside 0.." +
-                                std::to_string(maxval));
-      if (wide) *d++ = static_cast<std::uint8_t>(v >> 8);  // big-endian
-      *d++ = static_cast<std::uint8_t>(v & 0xFF);
+  const std::size_t channels = planes.size(), pixel_bytes = channels * (wide ? 2 : 1);
+  const std::string header = pnm_header(width, height, static_cast<int>(channels), maxval);
+
+  // The raster is made and written a chunk at a time, each interleaved while the last is in the
+  // page cache: no whole-image buffer to fault in. A sample out of range ends the write, and the
+  // atomic write then leaves no file.
+  constexpr std::size_t kChunkPixels = std::size_t{1} << 16;
+  std::vector<std::uint8_t, UninitialisedAllocator<std::uint8_t>> chunk(kChunkPixels * pixel_bytes);
+  std::size_t next = 0;  // the first pixel of the next chunk
+  bool header_written = false;
+  auto next_chunk = [&]() -> std::span<const std::uint8_t> {
+    if (!header_written) {
+      header_written = true;
+      return {reinterpret_cast<const std::uint8_t*>(header.data()), header.size()};
     }
-  detail::write_atomically(path, [&](const std::string& temporary) { detail::write_whole_file(path, temporary, out); });
+    const std::size_t first = next, n = std::min(kChunkPixels, samples - next);
+    if (n == 0) return {};
+    next += n;
+    const std::int32_t* p0 = planes[0].data() + first;
+    std::uint32_t largest = 0;
+    if (channels == 3) {
+      const std::int32_t *p1 = planes[1].data() + first, *p2 = planes[2].data() + first;
+      largest = wide ? detail::interleave_rgb16(p0, p1, p2, chunk.data(), n)
+                     : detail::interleave_rgb8(p0, p1, p2, chunk.data(), n);
+    } else {
+      largest = wide ? detail::interleave_grey16(p0, chunk.data(), n) : detail::interleave_grey8(p0, chunk.data(), n);
+    }
+    if (largest > maxval) throw_first_outside(path, planes, first, n, maxval);
+    return {chunk.data(), n * pixel_bytes};
+  };
+  detail::write_atomically(
+      path, [&](const std::string& temporary) { detail::write_file_in_chunks(path, temporary, next_chunk); });
 }
 
 }  // namespace imageio

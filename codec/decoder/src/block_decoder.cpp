@@ -147,7 +147,20 @@ class BlockDecoder {
     *value = negative ? -magnitude : magnitude;
   }
 
-  // D.3.1: insignificant samples with at least one significant neighbour.
+  // D.3.1 on row r of the column at `w` (`column_top` its row 0 in the output): an insignificant
+  // sample with at least one significant neighbour.
+  template <class Symbols>
+  [[gnu::always_inline]] void significance_row(std::uint32_t* w, int r, std::int32_t* column_top, int plane,
+                                               Symbols& s) {
+    const std::uint32_t around = *w >> (3 * r);  // reloaded: the row above may have changed it
+    if ((around & column::kCentre) || !(around & column::kNeighbours)) return;
+    *w |= column::visited(r);
+    if (s.decision(zc_[around & column::kNeighbourhood]))
+      become_significant(w, r, column_top + r * w_, s.sign(column::sign_index(w, r)), plane);
+  }
+
+  // D.3.1: insignificant samples with at least one significant neighbour. A full stripe's four
+  // rows are written out, so that each row's shifts and masks are constants.
   template <class Symbols>
   void significance_pass(int plane, Symbols s) {
     for (int y0 = 0; y0 < h_; y0 += 4) {
@@ -157,15 +170,28 @@ class BlockDecoder {
       for (int x = 0; x < w_; ++x) {
         std::uint32_t* w = words + x;
         if ((*w & column::kWindow) == 0) continue;  // no significant neighbour anywhere
-        for (int r = 0; r < rows; ++r) {
-          const std::uint32_t around = *w >> (3 * r);  // reloaded: the row above may have changed it
-          if ((around & column::kCentre) || !(around & column::kNeighbours)) continue;
-          *w |= column::visited(r);
-          if (s.decision(zc_[around & column::kNeighbourhood]))
-            become_significant(w, r, top + x + r * w_, s.sign(column::sign_index(w, r)), plane);
+        if (rows == 4) {
+          significance_row(w, 0, top + x, plane, s);
+          significance_row(w, 1, top + x, plane, s);
+          significance_row(w, 2, top + x, plane, s);
+          significance_row(w, 3, top + x, plane, s);
+        } else {
+          for (int r = 0; r < rows; ++r) significance_row(w, r, top + x, plane, s);
         }
       }
     }
+  }
+
+  // D.3.3 on row r of a column whose word is `word` (`column_top` its row 0 in the output): the
+  // refinement bit of a sample significant before this bit-plane, context by Table D.4.
+  template <class Symbols>
+  [[gnu::always_inline]] static void refine_row(std::uint32_t word, int r, std::int32_t* column_top, std::int32_t half,
+                                                Symbols& s, int width) {
+    const int bit = s.decision(t1::refinement_context(word, r));
+    // The interval halves: its middle moves up or down by a quarter of the old width.
+    std::int32_t& v = column_top[r * width];
+    const std::int32_t step = bit ? half : -half;
+    v += v < 0 ? -step : step;
   }
 
   // D.3.3: samples significant before this bit-plane; context by Table D.4.
@@ -177,22 +203,28 @@ class BlockDecoder {
       std::int32_t* top = out_ + static_cast<std::ptrdiff_t>(y0) * w_;
       for (int x = 0; x < w_; ++x) {
         const std::uint32_t word = words[x];  // refinement changes no significance: one load does
+        // None significant, at low rates most columns: skipped before the due rows are worked out.
+        if ((word & column::kSelfAll) == 0) continue;
         // Significant before this plane: significant, and not made so by this plane's first pass.
         const unsigned due = column::significant_rows(word) & ~(word >> 24) & 0xFu;
         if (due == 0) continue;
-        std::uint32_t refined = 0;
-        for (int r = 0; r < 4; ++r) {
-          if (!(due & (1u << r))) continue;
-          const int bit = s.decision(t1::refinement_context(word, r));
-          refined |= column::refined(r);
-          // The interval halves: its middle moves up or down by a quarter of the old width.
-          std::int32_t& v = top[x + r * w_];
-          const std::int32_t step = bit ? half : -half;
-          v += v < 0 ? -step : step;
-        }
-        words[x] = word | refined;
+        // The four rows written out: constant shifts and masks in each.
+        if (due & 1u) refine_row(word, 0, top + x, half, s, w_);
+        if (due & 2u) refine_row(word, 1, top + x, half, s, w_);
+        if (due & 4u) refine_row(word, 2, top + x, half, s, w_);
+        if (due & 8u) refine_row(word, 3, top + x, half, s, w_);
+        words[x] = word | due * column::refined(0);  // refined(r) = refined(0) << r, for each due row r
       }
     }
+  }
+
+  // D.3.4 on row r of the column at `w` (`column_top` its row 0 in the output), outside run-length
+  // mode: a sample neither significant nor coded by this bit-plane's significance pass.
+  [[gnu::always_inline]] void cleanup_row(std::uint32_t* w, int r, std::int32_t* column_top, int plane, MqSymbols& s) {
+    const std::uint32_t word = *w;  // reloaded: the row above may have changed it
+    if (word & (column::self(r) | column::visited(r))) return;
+    if (s.decision(zc_[(word >> (3 * r)) & column::kNeighbourhood]))
+      become_significant(w, r, column_top + r * w_, s.sign(column::sign_index(w, r)), plane);
   }
 
   // D.3.4: everything the significance pass left, with run-length decoding of quiet stripe
@@ -209,26 +241,40 @@ class BlockDecoder {
         int r = 0;
         if (rows == 4) {
           const std::uint32_t word = *w;
-          // Each of the four significant or coded by the significance pass: only the marks to clear.
-          if (((column::significant_rows(word) | (word >> 24)) & 0xFu) == 0xFu) {
-            *w = word & ~column::kVisitedAll;
-            continue;
-          }
           // Run-length mode: none of the four significant or visited, and all with the all-zero
-          // neighbourhood (zero-coding context 0 in every orientation).
+          // neighbourhood (zero-coding context 0 in every orientation). Tested first: at low rates
+          // most columns are such, and this test is the cheaper one.
           if ((word & (column::kWindow | column::kVisitedAll)) == 0) {
             if (!mq.decode(cx_[t1::kRunLengthContext])) continue;  // four insignificant samples
             r = mq.decode(cx_[t1::kUniformContext]) << 1;
             r |= mq.decode(cx_[t1::kUniformContext]);
             become_significant(w, r, top + x + r * w_, s.sign(column::sign_index(w, r)), plane);
             ++r;
+          } else if (((column::significant_rows(word) | (word >> 24)) & 0xFu) == 0xFu) {
+            // Each of the four significant or coded by the significance pass: only the marks to clear.
+            *w = word & ~column::kVisitedAll;
+            continue;
           }
         }
-        for (; r < rows; ++r) {
-          const std::uint32_t word = *w;
-          if (word & (column::self(r) | column::visited(r))) continue;
-          if (mq.decode(cx_[zc_[(word >> (3 * r)) & column::kNeighbourhood]]))
-            become_significant(w, r, top + x + r * w_, s.sign(column::sign_index(w, r)), plane);
+        if (rows == 4) {
+          switch (r) {  // a full stripe's rows written out from r on: constant shifts and masks
+            case 0:
+              cleanup_row(w, 0, top + x, plane, s);
+              [[fallthrough]];
+            case 1:
+              cleanup_row(w, 1, top + x, plane, s);
+              [[fallthrough]];
+            case 2:
+              cleanup_row(w, 2, top + x, plane, s);
+              [[fallthrough]];
+            case 3:
+              cleanup_row(w, 3, top + x, plane, s);
+              break;
+            default:
+              break;
+          }
+        } else {
+          for (; r < rows; ++r) cleanup_row(w, r, top + x, plane, s);
         }
         *w &= ~column::kVisitedAll;
       }

@@ -42,9 +42,10 @@ class MqDecoder {
     // DECODE (Figure C.15) with LPS_EXCHANGE (C.17) and MPS_EXCHANGE (C.16).
     const t1::MqTransition& t = t1::kMqTransitions[cx];
     const std::uint32_t qe = t.qe;
+    const std::uint32_t qe_high = qe << 16;  // Qe against C's upper half, without shifting C
     const int mps = cx & 1;
     a_ -= qe;
-    if ((c_ >> 16) < qe) {
+    if (c_ < qe_high) {
       int d;
       if (a_ < qe) {
         d = mps;
@@ -57,7 +58,7 @@ class MqDecoder {
       renormalise();
       return d;
     }
-    c_ -= qe << 16;
+    c_ -= qe_high;
     if (a_ & 0x8000) return mps;  // the common case: an MPS with no renormalisation
     int d;
     if (a_ < qe) {

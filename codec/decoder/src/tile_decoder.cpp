@@ -1,10 +1,12 @@
 #include "tile_decoder.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <variant>
 
@@ -15,7 +17,9 @@
 #include "codec/tier2/progression.h"
 #include "dwt/error.h"
 #include "dwt/geometry.h"
+#include "imageio/plane_memory.h"
 #include "packet_reader.h"
+#include "sample_output.h"
 
 namespace codec::dec {
 
@@ -54,8 +58,10 @@ StepSize step_of(const Quantization& q, int levels, const Subband& band) {
 struct Plane {
   Rect rect;  // on the (reduced) component grid
   bool reversible = true;
-  std::vector<std::int32_t> ints;
-  std::vector<float> floats;
+  // Uninitialised: tier-1 writes every sample, the blocks it does not decode as zeros, each
+  // block's part on the thread that decodes it (decode_blocks).
+  std::vector<std::int32_t, imageio::UninitialisedAllocator<std::int32_t>> ints;
+  std::vector<float, imageio::UninitialisedAllocator<float>> floats;
   int width() const { return static_cast<int>(rect.width()); }
   int height() const { return static_cast<int>(rect.height()); }
 };
@@ -99,8 +105,8 @@ bool last_ht_set(const BlockState& st, int mb, codec::ht::HtCodewords& set) {
   return chosen >= 0;
 }
 
-// Tier-1 (EBCOT or HT) of one code-block into `block` (w*h), in the representation of
-// decode_code_block.
+// Tier-1 (EBCOT or HT) of one code-block into `block` (w*h, every sample written), in the
+// representation of decode_code_block.
 void decode_block(const BlockState& st, int mb, int w, int h, BandOrientation orientation,
                   const ComponentCoding& coding, std::vector<std::int32_t>& block) {
   if (!is_ht(coding)) {
@@ -109,7 +115,7 @@ void decode_block(const BlockState& st, int mb, int w, int h, BandOrientation or
     return;
   }
   codec::ht::HtCodewords set;
-  if (!last_ht_set(st, mb, set)) return;
+  if (!last_ht_set(st, mb, set)) return std::fill(block.begin(), block.end(), 0);
   if (set.cleanup_plane < 0 || set.cleanup_plane > kMaxTopPlane)
     throw DecodeError("an HT code-block's cleanup pass is on bit-plane " + std::to_string(set.cleanup_plane) + " (Mb " +
                       std::to_string(mb) + ", " + std::to_string(st.missing_msbs) + " missing MSBs)");
@@ -142,7 +148,47 @@ struct BlockTask {
   int x = 0, y = 0;      // top-left in the plane's Mallat layout
   float half_delta = 0;  // irreversible: half the quantisation step
   std::int32_t roi_threshold = 0;
+  bool decoded = true;  // false: no pass arrived, or the block cannot reach the window: zeros
 };
+
+// H.2: coefficients at or above 2^s (`threshold`, in the decoder's doubled representation) belong to
+// the region and were scaled up by s.
+void descale_roi(std::span<std::int32_t> block, std::int32_t threshold, int roi_shift) {
+  for (std::int32_t& v : block) {
+    const std::int32_t m = v < 0 ? -v : v;
+    if (m >= threshold) v = v < 0 ? -(m >> roi_shift) : (m >> roi_shift);
+  }
+}
+
+// A decoded w x h block's coefficients into its place in the plane, dequantised: the exact integer
+// (the half-step dropped) or the value times the quantisation step (E.1.1.2). No zeros: zero
+// coefficients are written as such, and left-out blocks by clear_block.
+void dequantise_block(std::span<const std::int32_t> block, int w, int h, const BlockTask& t, Plane& plane) {
+  const auto stride = static_cast<std::size_t>(plane.width()), width = static_cast<std::size_t>(w);
+  for (int y = 0; y < h; ++y) {
+    const std::int32_t* in = block.data() + static_cast<std::size_t>(y) * width;
+    const std::size_t at = static_cast<std::size_t>(t.y + y) * stride + static_cast<std::size_t>(t.x);
+    if (plane.reversible) {
+      std::int32_t* out = plane.ints.data() + at;
+      for (std::size_t x = 0; x < width; ++x) out[x] = in[x] / 2;
+    } else {
+      float* out = plane.floats.data() + at;
+      for (std::size_t x = 0; x < width; ++x) out[x] = static_cast<float>(in[x]) * t.half_delta;
+    }
+  }
+}
+
+// The w x h zeros of a block tier-1 leaves out.
+void clear_block(int w, int h, const BlockTask& t, Plane& plane) {
+  const auto stride = static_cast<std::size_t>(plane.width()), width = static_cast<std::size_t>(w);
+  for (int y = 0; y < h; ++y) {
+    const std::size_t at = static_cast<std::size_t>(t.y + y) * stride + static_cast<std::size_t>(t.x);
+    if (plane.reversible)
+      std::fill_n(plane.ints.data() + at, width, 0);
+    else
+      std::fill_n(plane.floats.data() + at, width, 0.0f);
+  }
+}
 
 // Tier-1 and dequantisation of every code-block of a tile-component that reaches `window`, into
 // its plane in the Mallat layout of the (reduced) inverse DWT, timed into `times`. The
@@ -154,6 +200,7 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
   const auto geometry =
       dwt::decomposition(plane.width(), plane.height(), dwt::Origin{plane.rect.x0, plane.rect.y0}, kept_levels);
   std::vector<BlockTask> tasks;
+  std::size_t covered = 0;  // samples of the plane the blocks cover
   for (int r = 0; r <= kept_levels; ++r) {
     const Resolution& res = tc.resolutions[static_cast<std::size_t>(r)];
     for (std::size_t bi = 0; bi < res.bands.size(); ++bi) {
@@ -176,7 +223,8 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
           if (pb.band != static_cast<int>(bi)) continue;
           for (const CodeBlock& cb : pb.blocks) {
             const BlockState& st = states[cb.index];
-            if (st.kept_passes == 0 || !reaches(cb.rect, band.level, window)) continue;
+            task.decoded = st.kept_passes > 0 && reaches(cb.rect, band.level, window);
+            covered += static_cast<std::size_t>(cb.rect.width()) * static_cast<std::size_t>(cb.rect.height());
             task.block = &cb;
             task.state = &st;
             task.x = layout.x + static_cast<int>(cb.rect.x0 - band.rect.x0);
@@ -187,28 +235,24 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
     }
   }
   const auto tier1_start = Clock::now();
+  // The code-blocks of the kept resolutions tile the plane (B.5, B.7), so that each sample is
+  // written by one task; should a geometry ever leave a gap, the plane is cleared first.
+  if (covered != static_cast<std::size_t>(plane.width()) * static_cast<std::size_t>(plane.height())) {
+    if (plane.reversible)
+      std::fill(plane.ints.begin(), plane.ints.end(), 0);
+    else
+      std::fill(plane.floats.begin(), plane.floats.end(), 0.0f);
+  }
   const int roi_shift = params.roi_shift;
   pool.parallel_for(tasks.size(), [&](std::size_t k) {
     const BlockTask& t = tasks[k];
     const int w = static_cast<int>(t.block->rect.width()), h = static_cast<int>(t.block->rect.height());
+    if (!t.decoded) return clear_block(w, h, t, plane);
     thread_local std::vector<std::int32_t> block;  // one per worker, reused from block to block
-    block.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
+    block.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));  // tier-1 writes every sample
     decode_block(*t.state, t.mb, w, h, t.orientation, params.coding, block);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        std::int32_t v = block[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)];
-        if (t.roi_threshold) {
-          // H.2: coefficients at or above 2^s belong to the region and were scaled up by s.
-          const std::int32_t m = v < 0 ? -v : v;
-          if (m >= t.roi_threshold) v = v < 0 ? -(m >> roi_shift) : (m >> roi_shift);
-        }
-        const std::size_t at = static_cast<std::size_t>(t.y + y) * static_cast<std::size_t>(plane.width()) +
-                               static_cast<std::size_t>(t.x + x);
-        if (plane.reversible)
-          plane.ints[at] = v / 2;  // the half-step dropped: the exact integer
-        else
-          plane.floats[at] = static_cast<float>(v) * t.half_delta;
-      }
+    if (t.roi_threshold) descale_roi(block, t.roi_threshold, roi_shift);
+    dequantise_block(block, w, h, t, plane);
   });
   times.tier1 += ms_since(tier1_start);
 }
@@ -242,55 +286,107 @@ void inverse_dwt(Plane& plane, int levels, const TileDecodeSetup& setup) {
   }
 }
 
-// G.2: inverse RCT (reversible) or ICT (irreversible) on components 0..2.
-void inverse_component_transform(std::vector<Plane>& planes) {
-  Plane &p0 = planes[0], &p1 = planes[1], &p2 = planes[2];
-  if (p0.rect != p1.rect || p0.rect != p2.rect)
-    throw DecodeError("the component transform needs equal tile-components");
-  if (p0.reversible) {
-    for (std::size_t i = 0; i < p0.ints.size(); ++i) {
-      const std::int32_t y = p0.ints[i], cb = p1.ints[i], cr = p2.ints[i];
-      // G-7: G = Y - floor((Cb + Cr) / 4); R = Cr + G; B = Cb + G (arithmetic shift is floor).
-      const std::int32_t g = y - static_cast<std::int32_t>((static_cast<std::int64_t>(cb) + cr) >> 2);
-      p0.ints[i] = cr + g;
-      p1.ints[i] = g;
-      p2.ints[i] = cb + g;
-    }
-  } else {
-    for (std::size_t i = 0; i < p0.floats.size(); ++i) {
-      const float y = p0.floats[i], cb = p1.floats[i], cr = p2.floats[i];
-      // G-9 (Table G.? coefficients as T.800 gives them).
-      p0.floats[i] = y + 1.402f * cr;
-      p1.floats[i] = y - 0.34413f * cb - 0.71414f * cr;
-      p2.floats[i] = y + 1.772f * cb;
-    }
-  }
+// Rows [y0, y1) through fn(y), in bands of rows spread over the pool.
+template <class RowFunction>
+void for_rows(std::int64_t y0, std::int64_t y1, base::ThreadPool& pool, const RowFunction& fn) {
+  constexpr std::int64_t kRowsPerTask = 16;  // a few tens of KiB per task: little overhead per row
+  const auto tasks = static_cast<std::size_t>((y1 - y0 + kRowsPerTask - 1) / kRowsPerTask);
+  pool.parallel_for(tasks, [&](std::size_t k) {
+    const std::int64_t first = y0 + static_cast<std::int64_t>(k) * kRowsPerTask;
+    for (std::int64_t y = first; y < std::min(y1, first + kRowsPerTask); ++y) fn(y);
+  });
 }
 
-// G.1.2: level shift back to unsigned, then clamping to the component's range; the irreversible
-// path rounds to the nearest integer first.
-void store(const Plane& plane, const ComponentSize& size, DecodedComponent& out) {
-  const std::int64_t shift = size.is_signed ? 0 : (std::int64_t{1} << (size.precision - 1));
-  const std::int64_t lo = size.is_signed ? -(std::int64_t{1} << (size.precision - 1)) : 0;
-  const std::int64_t hi =
-      size.is_signed ? (std::int64_t{1} << (size.precision - 1)) - 1 : (std::int64_t{1} << size.precision) - 1;
-  const Rect area =
-      plane.rect.intersect(Rect{out.x0, out.y0, std::int64_t{out.x0} + out.width, std::int64_t{out.y0} + out.height});
-  for (std::int64_t y = area.y0; y < area.y1; ++y)
-    for (std::int64_t x = area.x0; x < area.x1; ++x) {
-      const std::size_t from = static_cast<std::size_t>(y - plane.rect.y0) * static_cast<std::size_t>(plane.width()) +
-                               static_cast<std::size_t>(x - plane.rect.x0);
-      std::int64_t v;
-      if (plane.reversible) {
-        v = plane.ints[from];
-      } else {
-        const float f = plane.floats[from];
-        v = std::isfinite(f) ? static_cast<std::int64_t>(std::lrint(std::clamp(f, -1e12f, 1e12f))) : 0;
-      }
-      v = std::clamp(v + shift, lo, hi);
-      out.samples[static_cast<std::size_t>(y - out.y0) * static_cast<std::size_t>(out.width) +
-                  static_cast<std::size_t>(x - out.x0)] = static_cast<std::int32_t>(v);
+// Sample (x, y) of a plane or an output component (their own grid's coordinates).
+template <class T, class Allocator>
+const T* plane_at(const std::vector<T, Allocator>& samples, const Plane& plane, std::int64_t x, std::int64_t y) {
+  return samples.data() + static_cast<std::size_t>(y - plane.rect.y0) * static_cast<std::size_t>(plane.width()) +
+         static_cast<std::size_t>(x - plane.rect.x0);
+}
+std::int32_t* output_at(DecodedComponent& out, std::int64_t x, std::int64_t y) {
+  return out.samples.data() + static_cast<std::size_t>(y - out.y0) * static_cast<std::size_t>(out.width) +
+         static_cast<std::size_t>(x - out.x0);
+}
+Rect output_rect(const DecodedComponent& out) {
+  return Rect{out.x0, out.y0, std::int64_t{out.x0} + out.width, std::int64_t{out.y0} + out.height};
+}
+
+// G.1.2 on one plane without a component transform: level shift, rounding (9/7) and clamping into
+// the part of the output component the plane covers.
+void store(const Plane& plane, const ComponentSize& size, DecodedComponent& out, base::ThreadPool& pool) {
+  const SampleRange range = sample_range(size.precision, size.is_signed);
+  const Rect area = plane.rect.intersect(output_rect(out));
+  if (area.empty()) return;
+  const auto n = static_cast<std::size_t>(area.width());
+  for_rows(area.y0, area.y1, pool, [&](std::int64_t y) {
+    if (plane.reversible)
+      ints_to_samples(plane_at(plane.ints, plane, area.x0, y), range, output_at(out, area.x0, y), n);
+    else
+      floats_to_samples(plane_at(plane.floats, plane, area.x0, y), range, output_at(out, area.x0, y), n);
+  });
+}
+
+// G.2 and G.1.2 on components 0..2 in one pass: the inverse RCT or ICT of the three planes, then
+// each output component's level shift, rounding and clamping. `outputs` holds the selected ones
+// (null: decoded for the transform only), all covering the same part of the planes.
+void store_transformed(const std::array<const Plane*, 3>& planes, const std::array<DecodedComponent*, 3>& outputs,
+                       const OutputRanges& ranges, const Rect& area, base::ThreadPool& pool) {
+  const Plane &p0 = *planes[0], &p1 = *planes[1], &p2 = *planes[2];
+  const auto n = static_cast<std::size_t>(area.width());
+  for_rows(area.y0, area.y1, pool, [&](std::int64_t y) {
+    OutputRows rows{};
+    for (std::size_t c = 0; c < 3; ++c) rows[c] = outputs[c] ? output_at(*outputs[c], area.x0, y) : nullptr;
+    if (p0.reversible)
+      rct_to_samples(plane_at(p0.ints, p0, area.x0, y), plane_at(p1.ints, p1, area.x0, y),
+                     plane_at(p2.ints, p2, area.x0, y), ranges, rows, n);
+    else
+      ict_to_samples(plane_at(p0.floats, p0, area.x0, y), plane_at(p1.floats, p1, area.x0, y),
+                     plane_at(p2.floats, p2, area.x0, y), ranges, rows, n);
+  });
+}
+
+// The tile's planes into the output image: components 0..2 through the inverse component
+// transform when `mct`, every selected component level-shifted and clamped; the rows on the pool.
+void store_tile(const std::vector<Plane>& planes, bool mct, const Siz& siz, const std::vector<bool>& selected,
+                DecodedImage& image, base::ThreadPool& pool) {
+  std::size_t first_plain = 0;  // components from here on have no component transform
+  if (mct) {
+    const Plane &p0 = planes[0], &p1 = planes[1], &p2 = planes[2];
+    if (p0.rect != p1.rect || p0.rect != p2.rect)
+      throw DecodeError("the component transform needs equal tile-components");
+    if (p0.reversible != p1.reversible || p0.reversible != p2.reversible)
+      throw DecodeError("the component transform needs components 0..2 all reversible or all irreversible");
+    std::array<DecodedComponent*, 3> outputs{};
+    OutputRanges ranges{};
+    for (std::size_t c = 0; c < 3; ++c) {
+      ranges[c] = sample_range(siz.components[c].precision, siz.components[c].is_signed);
+      if (selected[c]) outputs[c] = &image.components[c];
     }
+    // Components with other sampling factors may cover other parts of the planes: then one pass each.
+    std::optional<Rect> shared;
+    bool same_area = true;
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (!outputs[c]) continue;
+      const Rect own = p0.rect.intersect(output_rect(*outputs[c]));
+      if (!shared) shared = own;
+      same_area = same_area && own == *shared;
+    }
+    const std::array<const Plane*, 3> transformed{&p0, &p1, &p2};
+    if (same_area) {
+      if (shared && !shared->empty()) store_transformed(transformed, outputs, ranges, *shared, pool);
+    } else {
+      for (std::size_t c = 0; c < 3; ++c) {
+        if (!outputs[c]) continue;
+        std::array<DecodedComponent*, 3> one{};
+        one[c] = outputs[c];
+        const Rect own = p0.rect.intersect(output_rect(*outputs[c]));
+        if (!own.empty()) store_transformed(transformed, one, ranges, own, pool);
+      }
+    }
+    first_plain = 3;
+  }
+  for (std::size_t c = first_plain; c < planes.size(); ++c)
+    if (selected[c]) store(planes[c], siz.components[c], image.components[c], pool);
 }
 
 // The tile's packets in the order they were sent: COD's progression, or with POC (A.6.6, B.12.2)
@@ -467,11 +563,11 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     plane.rect = tc.resolutions[static_cast<std::size_t>(tc.levels - reduce)].rect;
     plane.reversible = params.components[c].coding.reversible;
     const std::size_t n = static_cast<std::size_t>(plane.rect.width()) * static_cast<std::size_t>(plane.rect.height());
-    const auto clear_start = Clock::now();  // the zeros of blocks tier-1 leaves out are its own
+    const auto clear_start = Clock::now();  // allocating the plane is tier-1's
     if (plane.reversible)
-      plane.ints.assign(n, 0);
+      imageio::resize_with_huge_pages(plane.ints, n);
     else
-      plane.floats.assign(n, 0.0f);
+      imageio::resize_with_huge_pages(plane.floats, n);
     times.tier1 += ms_since(clear_start);
     decode_blocks(tc, params.components[c], size, reduce, tile_component_rect(setup.window, size.dx, size.dy), blocks,
                   plane, *setup.pool, times);
@@ -483,9 +579,7 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
   }
   const auto transform_start = Clock::now();
   blocks.clear();
-  if (params.cod.mct == 1 && needed[0]) inverse_component_transform(planes);
-  for (std::size_t c = 0; c < planes.size(); ++c)
-    if (setup.selected[c]) store(planes[c], cs.siz.components[c], image.components[c]);
+  store_tile(planes, params.cod.mct == 1 && needed[0], cs.siz, setup.selected, image, *setup.pool);
   times.component_transform += ms_since(transform_start);
 }
 
