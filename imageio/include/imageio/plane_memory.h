@@ -38,7 +38,8 @@ using SamplePlane = std::vector<std::int32_t, UninitialisedAllocator<std::int32_
 // pages, before anything touches it. A 2048x2048 plane of 32-bit samples is 4096 ordinary pages:
 // the first touch of each costs a fault and a page clear, some 30 ms for an RGB image's planes
 // spread over the stages that fill them, where 2 MiB pages take a handful of faults. Only a hint:
-// where the system does not offer huge pages (or the range holds no aligned 2 MiB) nothing changes.
+// where the system does not offer huge pages (or the range holds no aligned 2 MiB) nothing changes,
+// and ranges over 32 MiB are left alone (plane_memory.cpp: synchronous compaction).
 void prefer_huge_pages(const void* data, std::size_t bytes);
 
 // Sizes an empty vector to `n` elements through prefer_huge_pages: capacity first, the hint,
