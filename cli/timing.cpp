@@ -1,29 +1,10 @@
 #include "timing.h"
 
-#include <cstdio>
+#include "base/json_string.h"
 
 namespace cli {
-namespace {
 
-// A JSON string literal: quotes and backslashes escaped, control characters as \u00XX.
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const char ch : text) {
-    if (ch == '"' || ch == '\\') {
-      out += '\\';
-      out += ch;
-    } else if (static_cast<unsigned char>(ch) < 0x20) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(ch)));
-      out += escaped;
-    } else {
-      out += ch;
-    }
-  }
-  return out + "\"";
-}
-
-}  // namespace
+using base::json_string;
 
 double stage_sum(std::span<const TimedStage> stages) {
   double sum = 0;

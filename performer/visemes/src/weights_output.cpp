@@ -5,6 +5,8 @@
 #include <string>
 #include <string_view>
 
+#include "base/json_string.h"
+
 namespace performer {
 
 namespace {
@@ -28,22 +30,7 @@ std::string csv_field(std::string_view s) {
   return out + "\"";
 }
 
-std::string json_string(std::string_view s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char esc[8];
-      std::snprintf(esc, sizeof esc, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
-      out += esc;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
+using base::json_string;
 
 }  // namespace
 
