@@ -215,8 +215,8 @@ int main(int argc, char** argv) {
     if (verbose)
       std::fprintf(stderr, "j2kdec: %s -> %s: %lldx%lld, %zu components, %.1f ms, DWT on %s (%s)\n", input.c_str(),
                    output.c_str(), static_cast<long long>(image.x1 - image.x0),
-                   static_cast<long long>(image.y1 - image.y0), image.components.size(), ms,
-                   report.dwt_backend.c_str(), report.dwt_reason.c_str());
+                   static_cast<long long>(image.y1 - image.y0), image.components.size(), ms, report.dwt_backend.c_str(),
+                   report.dwt_reason.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "j2kdec: %s: %s\n", input.c_str(), base::one_line(e.what()).c_str());
     return 1;

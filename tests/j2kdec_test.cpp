@@ -73,8 +73,8 @@ class J2kdecCli : public ::testing::Test {
     p.dwt = codec::DwtDevice::Cpu;
     p.layers.push_back({codec::LayerTarget::Kind::Bytes, 320 * 240 * 1.0 / 8});
     const auto bytes = codec::encode(codec::to_source_image(img, "mix"), p, codec::FileFormat::Codestream);
-    std::ofstream(stream, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
-                                                  static_cast<std::streamsize>(bytes.size()));
+    std::ofstream(stream, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   }
   void TearDown() override { ::unsetenv("GPUJ2K_CACHE_DIR"); }
 
@@ -142,9 +142,9 @@ TEST_F(J2kdecCli, TimingJsonIsValidWithTheSameStages) {
       "assert d['sum_ms'] <= d['total_ms'] + 1e-3, d\n"
       "assert d['dwt'].startswith('cpu') and d['dwt_reason'] == 'asked for the CPU' and d['threads'] >= 1, d\n";
   std::ofstream(scratch / "check.py") << check;
-  const auto c = run("/usr/bin/python3 '" + (scratch / "check.py").string() + "' '" + json.string() + "' '" +
-                         names.string() + "'",
-                     scratch.path());
+  const auto c =
+      run("/usr/bin/python3 '" + (scratch / "check.py").string() + "' '" + json.string() + "' '" + names.string() + "'",
+          scratch.path());
   EXPECT_EQ(c.exit_code, 0) << c.err << "\nfrom: " << r.err;
 }
 
@@ -197,8 +197,8 @@ TEST_F(J2kdecCli, ReversibleStreamsKeepTheDwtOnTheCpu) {
   codec::EncodeParams p;
   p.lossless = true;
   const auto bytes = codec::encode(codec::to_source_image(img, "mix"), p, codec::FileFormat::Codestream);
-  std::ofstream(stream, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
-                                                static_cast<std::streamsize>(bytes.size()));
+  std::ofstream(stream, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   const auto r = j2kdec(decode_args("l.pgm", "--dwt gpu -v"), scratch.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("DWT on cpu lifting"), std::string::npos) << r.err;

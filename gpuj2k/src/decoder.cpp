@@ -74,8 +74,8 @@ void fill_report(const codec::DecodeReport& r, double read_ms, DecodeReport& out
 }
 
 // The decode itself, with the inverse 9/7 where options.dwt chooses (codec/dwt_choice).
-codec::DecodedImage run_decode(std::span<const std::uint8_t> bytes, const DecodeOptions& options,
-                               DecodeReport* report, double read_ms = 0) {
+codec::DecodedImage run_decode(std::span<const std::uint8_t> bytes, const DecodeOptions& options, DecodeReport* report,
+                               double read_ms = 0) {
   codec::DecodeReport codec_report;
   codec::DecodedImage image = codec::decode(bytes, to_codec(options), report ? &codec_report : nullptr);
   if (report) fill_report(codec_report, read_ms, *report);

@@ -39,11 +39,11 @@ struct DecodeOptions {
   std::optional<Region> region;  // decode only this window (clipped to the image)
   // Refuse streams whose image, tiles or working buffers would need more than this many bytes.
   std::size_t max_memory = std::size_t{2} << 30;
-  int threads = 0;                 // CPU threads of the inverse DWT; 0: one per hardware thread
+  int threads = 0;  // CPU threads of the inverse DWT; 0: one per hardware thread
   // Where the inverse 9/7 runs: Gpu, any GL context (fragment shaders); Auto, as the encoder chooses
   // (a hardware GPU where it is faster for the image size, never a software renderer).
   DwtDevice dwt = DwtDevice::Cpu;
-  bool sycc_to_srgb = true;        // JP2 files: sYCC (colr 18) converted to sRGB, as a viewer shows it
+  bool sycc_to_srgb = true;  // JP2 files: sYCC (colr 18) converted to sRGB, as a viewer shows it
 };
 
 // One decoded component (or JP2 channel) on its own sampling grid.
@@ -96,8 +96,8 @@ struct DecodeReport {
   std::string dwt_backend;  // where the inverse 9/7 ran, with the GL renderer for the GPU
   std::string dwt_reason;   // why there
   // Milliseconds per stage.
-  double read_ms = 0, parse_ms = 0, setup_ms = 0, gl_context_ms = 0, shader_compile_ms = 0, tier2_ms = 0,
-         tier1_ms = 0, upload_ms = 0, dwt_ms = 0, download_ms = 0, component_transform_ms = 0;
+  double read_ms = 0, parse_ms = 0, setup_ms = 0, gl_context_ms = 0, shader_compile_ms = 0, tier2_ms = 0, tier1_ms = 0,
+         upload_ms = 0, dwt_ms = 0, download_ms = 0, component_transform_ms = 0;
 };
 
 // What decode would give, from the headers alone (nothing is decoded): the size and components

@@ -82,12 +82,12 @@ struct DecodedImage {
 // reversed). Threaded stages are the wall time of the stage, not the workers' summed time. GPU
 // stages are measured with the device idle before each clock read, so they are real, not estimates.
 struct DecodeStageTimes {
-  double read = 0;                 // decode_file: the file into memory
-  double parse = 0;                // JP2 boxes, main and tile-part headers
-  double setup = 0;                // the output image, worker threads, the DWT choice (less the GL times below)
-  double gl_context = 0;           // creating the GL context, and releasing it at the end (GPU DWT only)
-  double shader_compile = 0;       // compiling the DWT shader (GPU DWT only)
-  double tier2 = 0;                // each tile's structure and its packets: headers and code-block data
+  double read = 0;            // decode_file: the file into memory
+  double parse = 0;           // JP2 boxes, main and tile-part headers
+  double setup = 0;           // the output image, worker threads, the DWT choice (less the GL times below)
+  double gl_context = 0;      // creating the GL context, and releasing it at the end (GPU DWT only)
+  double shader_compile = 0;  // compiling the DWT shader (GPU DWT only)
+  double tier2 = 0;           // each tile's structure and its packets: headers and code-block data
   // Code-block decoding (EBCOT or HT) with each block's ROI de-scaling and dequantisation into the
   // DWT's plane, one stage as the encoder's "quantization + tier-1": timing them apart would take a
   // second pass over the plane.
@@ -97,8 +97,8 @@ struct DecodeStageTimes {
   double download = 0;             // planes back from the GPU
   double component_transform = 0;  // inverse MCT, DC level shift and clamping, JP2 palette and colour
   double total() const {
-    return read + parse + setup + gl_context + shader_compile + tier2 + tier1 + upload + dwt +
-           download + component_transform;
+    return read + parse + setup + gl_context + shader_compile + tier2 + tier1 + upload + dwt + download +
+           component_transform;
   }
 };
 

@@ -12,7 +12,6 @@ namespace codec {
 
 enum class Progression { LRCP = 0, RLCP = 1, RPCL = 2, PCRL = 3, CPRL = 4 };
 
-
 // One quality layer's target. Exactly one kind is used per encode.
 struct LayerTarget {
   enum class Kind { Bytes, Psnr } kind = Kind::Bytes;
