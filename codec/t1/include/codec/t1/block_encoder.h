@@ -51,7 +51,9 @@ struct EncodedBlock {
 // Where a rate-aware encoder may stop coding a block (DESIGN.md, "rate-aware tier-1"): after the
 // cleanup pass that ends a bit-plane, once that bit-plane and the one before it each bought less
 // than `min_slope` weighted distortion per byte (weight * distortion decrease / bytes, the bytes
-// estimated from the coder's state). The codeword is then terminated there, as if that pass were
+// estimated from the coder's state), or that bit-plane alone where the block's slopes behave
+// (a plane above it paid, this one bought something, the next brings no swell of new
+// coefficients: block_encoder.cpp, stops_after_quiet_plane). The codeword is then terminated there, as if that pass were
 // the last. A block whose weighted energy (all the distortion it could ever buy) is below
 // `min_slope` times one byte is not coded at all: no pass, stopped_early set. 0: every pass.
 // `pass_limit`, when positive, also stops the block (stopped_early set) after that many passes.
