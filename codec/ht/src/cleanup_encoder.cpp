@@ -30,7 +30,7 @@ class SampleGrid {
         negative_(negative),
         width_(width),
         stride_(static_cast<std::size_t>(width) + 2 * kBorder),
-        exponents_(stride_ * (static_cast<std::size_t>(height) + 2), 0) {
+        exponents_(stride_ * (static_cast<std::size_t>(height) + 2) + kPairOverread, 0) {
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) exponents_[cell(x, y)] = static_cast<std::uint8_t>(exponent(mu[index(x, y)]));
   }
@@ -53,6 +53,9 @@ class SampleGrid {
 
  private:
   static constexpr std::size_t kBorder = 2;
+  // pair_empty reads four cells from a lone last quad's x0, one past the right border when the
+  // width is odd: the next row's (zero) left border, or for the bottom border row these bytes.
+  static constexpr std::size_t kPairOverread = 4;
   std::size_t index(int x, int y) const {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
   }
