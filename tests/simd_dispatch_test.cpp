@@ -23,7 +23,8 @@ struct LibHwy {
 };
 
 // The targets Highway 1.0.3 knows on this architecture (HWY_TARGETS lists the compiled ones).
-constexpr std::int64_t kKnownTargets = HWY_AVX3_DL | HWY_AVX3 | HWY_AVX2 | HWY_SSE4 | HWY_SSSE3 | HWY_EMU128 | HWY_SCALAR;
+constexpr std::int64_t kKnownTargets =
+    HWY_AVX3_DL | HWY_AVX3 | HWY_AVX2 | HWY_SSE4 | HWY_SSSE3 | HWY_EMU128 | HWY_SCALAR;
 
 TEST(SimdDispatch, SupportedTargetsAgreeWithLibhwy) {
   const LibHwy lib;

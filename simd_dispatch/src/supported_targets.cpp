@@ -48,16 +48,16 @@ std::int64_t x86_targets() {
   const bool ssse3 = sse && bit(basic.ecx, 0) && bit(basic.ecx, 9);                            // SSE3, SSSE3
   const bool sse4 = ssse3 && bit(basic.ecx, 19) && bit(basic.ecx, 20) && bit(basic.ecx, 1) &&  // 4.1, 4.2, CLMUL
                     bit(basic.ecx, 25);                                                        // AES
-  const bool avx2_isa = sse4 && bit(basic.ecx, 28) && bit(extended.ebx, 5) &&  // AVX, AVX2
-                        bit(basic.ecx, 29) && bit(basic.ecx, 12) &&            // F16C, FMA
-                        bit(extended.ebx, 3) && bit(extended.ebx, 8) &&        // BMI1, BMI2
-                        bit(amd.ecx, 5);                                       // LZCNT
-  const bool avx3_isa = avx2_isa && bit(extended.ebx, 16) && bit(extended.ebx, 17) &&  // AVX-512 F, DQ
-                        bit(extended.ebx, 30) && bit(extended.ebx, 31);                // BW, VL
-  const bool avx3_dl_isa = avx3_isa && bit(extended.ecx, 11) && bit(extended.ecx, 10) &&  // VNNI, VPCLMULQDQ
-                           bit(extended.ecx, 1) && bit(extended.ecx, 6) &&                // VBMI, VBMI2
-                           bit(extended.ecx, 9) && bit(extended.ecx, 14) &&               // VAES, VPOPCNTDQ
-                           bit(extended.ecx, 12);                                         // BITALG
+  const bool avx2_isa = sse4 && bit(basic.ecx, 28) && bit(extended.ebx, 5) &&                  // AVX, AVX2
+                        bit(basic.ecx, 29) && bit(basic.ecx, 12) &&                            // F16C, FMA
+                        bit(extended.ebx, 3) && bit(extended.ebx, 8) &&                        // BMI1, BMI2
+                        bit(amd.ecx, 5);                                                       // LZCNT
+  const bool avx3_isa = avx2_isa && bit(extended.ebx, 16) && bit(extended.ebx, 17) &&          // AVX-512 F, DQ
+                        bit(extended.ebx, 30) && bit(extended.ebx, 31);                        // BW, VL
+  const bool avx3_dl_isa = avx3_isa && bit(extended.ecx, 11) && bit(extended.ecx, 10) &&       // VNNI, VPCLMULQDQ
+                           bit(extended.ecx, 1) && bit(extended.ecx, 6) &&                     // VBMI, VBMI2
+                           bit(extended.ecx, 9) && bit(extended.ecx, 14) &&                    // VAES, VPOPCNTDQ
+                           bit(extended.ecx, 12);                                              // BITALG
 
   // The vector registers' upper parts survive a context switch only where the system saves them:
   // SSE and AVX state (XCR0 bits 1, 2) for 256-bit vectors, the opmask and both halves of the
