@@ -5,6 +5,7 @@
 #include "glcontext/error.h"
 
 #include <cctype>
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -29,6 +30,22 @@ std::unique_ptr<detail::Backend> create_backend(Platform platform, bool auto_mod
       break;
   }
   throw GlError("internal: no backend for platform");
+}
+
+// Whether the system has a device node through which a driver could reach a GPU: a DRM node
+// (/dev/dri/card*, /dev/dri/renderD*: Mesa's hardware drivers, NVIDIA's with DRM), NVIDIA's own
+// (/dev/nvidia0, ...) or WSL's /dev/dxg. Without one no driver can, and asking EGL would only load
+// Mesa's libraries to find its software device: a millisecond, 1 % of a small encode.
+bool gpu_device_node_present() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator("/dev/dri", ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.starts_with("card") || name.starts_with("renderD")) return true;
+  }
+  for (const char* node : {"/dev/nvidia0", "/dev/dxg"})
+    if (fs::exists(node, ec)) return true;
+  return false;
 }
 
 std::string gl_string(const GlApi& gl, GLenum name) {
@@ -61,6 +78,8 @@ std::unique_ptr<Context> Context::create(Platform platform) {
 }
 
 std::unique_ptr<Context> Context::create_hardware() {
+  if (!gpu_device_node_present())
+    throw GlError("no hardware GPU: no GPU device node (/dev/dri/card*, /dev/dri/renderD*, /dev/nvidia0, /dev/dxg)");
   std::unique_ptr<Context> context;
   try {
     context.reset(new Context(Platform::EglDevice, detail::create_egl_device_backend(false)));

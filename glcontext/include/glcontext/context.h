@@ -59,8 +59,9 @@ class Context {
 
   // A context on a hardware GPU, never a software rasteriser: the EGL device platform's
   // non-software devices only (NVIDIA's headless path, and Mesa's DRM devices). Cheap to refuse on
-  // a machine without one: enumerating the devices creates no context. Throws GlError saying
-  // what was found instead.
+  // a machine without one: with no GPU device node (/dev/dri, /dev/nvidia0, /dev/dxg) EGL is not
+  // even loaded, and enumerating the devices creates no context. Throws GlError saying what was
+  // found instead.
   static std::unique_ptr<Context> create_hardware();
 
   ~Context();
