@@ -195,7 +195,14 @@ EncodedBlock encode_state(CoefficientState& state, int width, int height, Orient
   }
   out.passes.resize(static_cast<std::size_t>(count));
   if (count == 0) return out;
-  out.data.reserve(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  // The bytes go to a per-thread buffer that keeps its capacity, and are copied out at their exact
+  // size at the end: a fresh width x height reservation per block touched a new page (a fault and
+  // a page clear) for each of the thousands of blocks of a large image, most of them coding a few
+  // bytes at low rates.
+  thread_local std::vector<std::uint8_t> buffer;
+  buffer.clear();
+  buffer.reserve(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  out.data.swap(buffer);
 
   const BlockView v = state.view(style.vertically_causal);
   const ZeroCodingTable& zc = zero_coding_table(o);
@@ -239,6 +246,9 @@ EncodedBlock encode_state(CoefficientState& state, int width, int height, Orient
       break;
     }
   }
+  std::vector<std::uint8_t> exact(out.data.begin(), out.data.end());
+  out.data.swap(buffer);
+  out.data = std::move(exact);
   return out;
 }
 
