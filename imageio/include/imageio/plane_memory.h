@@ -29,13 +29,13 @@ struct UninitialisedAllocator : std::allocator<T> {
   T* allocate(std::size_t n) {
     if (n > std::size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
     if (n * sizeof(T) < kHugePageBytes) return std::allocator<T>::allocate(n);
-    return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{kHugePageBytes}));
+    return static_cast<T*>(::operator new (n * sizeof(T), std::align_val_t{kHugePageBytes}));
   }
   void deallocate(T* p, std::size_t n) noexcept {
     if (n * sizeof(T) < kHugePageBytes)
       std::allocator<T>::deallocate(p, n);
     else
-      ::operator delete(p, n * sizeof(T), std::align_val_t{kHugePageBytes});
+      ::operator delete (p, n * sizeof(T), std::align_val_t{kHugePageBytes});
   }
   template <class U>
   void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
