@@ -59,8 +59,10 @@ struct BlockJob {
 // one where the block's slopes behave (t1's stops_after_quiet_plane), and
 // are not coded at all when their whole energy for one byte would buy less. The sample is
 // stratified by resolution: resolutions of at most kWholeResolutionBlocks blocks whole, one block
-// in kSampleStride of the others. Of it, a sparser sample (kPresampleStride) is coded in full
-// first, and the rest stops at the threshold that predicts / kPresampleMargin.
+// in kSampleStride of the others. Of it, a sparser sample (kPresampleStride) is coded first, in
+// full or, at low byte targets, down to an eighth below the floor its top bit-planes predict
+// (presample_top_planes in tile_coder.cpp), and the rest stops at the threshold that predicts /
+// kPresampleMargin.
 // Measured on the 2048x2048 mosaic (planes coded, blocks coded again because they stopped too
 // soon), with the unstratified sample of 2026-11-24: safety 4 codes 15980 planes at 3 bpp and
 // 10423 at 0.75 bpp; 2 codes 14489 and 10030 with 74 blocks recoded at 0.1875 bpp; 1.4 codes 14096
