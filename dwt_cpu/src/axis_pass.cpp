@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "lifting_simd.h"
@@ -132,6 +134,83 @@ void run_rows(const Layout& L, const AxisPass& p, dwt::PlaneSpan<T> plane, base:
   });
 }
 
+// Line b of a vertical strip, gathered from its plane row (map[b]; -1: zeros), with the line
+// kPrefetchLines ahead asked for: each line is a short run of a row a plane's width from the last,
+// which the hardware prefetcher does not follow.
+template <class T>
+void gather_line(const Strip<T>& strip, int b, const std::vector<int>& map, dwt::PlaneSpan<T> plane, int lane0) {
+  T* line = strip.line(b);
+  const int src = map[static_cast<std::size_t>(b)];
+  if (src < 0) {
+    std::fill(line, line + strip.lanes, T(0));
+    return;
+  }
+  if (b + kPrefetchLines < strip.lines) {
+    const int ahead = map[static_cast<std::size_t>(b + kPrefetchLines)];
+    if (ahead >= 0) {
+      const char* from = reinterpret_cast<const char*>(plane.row(ahead) + lane0);
+      for (std::size_t k = 0; k < strip.lanes * sizeof(T); k += 64) __builtin_prefetch(from + k);
+    }
+  }
+  std::memcpy(line, plane.row(src) + lane0, strip.lanes * sizeof(T));
+}
+
+// How many lines the streaming forward pass gathers between two advances of its lifting: few
+// enough that the lines a step touches are still in the first-level cache.
+constexpr int kStreamLines = 8;
+
+// The forward vertical pass, strip by strip: a strip's lines are gathered top to bottom and lifted
+// as they arrive (StreamingForwardLift), and each finished line goes to its Mallat row as soon as
+// no later gather reads that row, its class' gain applied on the way. A line then crosses the
+// cache about once, where gathering the whole strip, lifting it step by step and scaling it class
+// by class crossed it six times; and the low half leaves while it is still cached. The arithmetic
+// is lift_forward's, in the same order: the coefficients are the same to the bit.
+template <class T>
+void run_columns_forward(const Layout& L, const AxisPass& p, dwt::PlaneSpan<T> plane, base::ThreadPool& pool,
+                         const std::vector<int>& map) {
+  const int lines = L.n + 2 * L.pad;
+  const std::size_t strips = (static_cast<std::size_t>(L.lanes) + L.strip_lanes - 1) / L.strip_lanes;
+  const int first_class = (L.parity - L.pad) & 1;
+  // first_read[b]: the lowest plane row that lines b, b + 1, ... read (the bottom extension
+  // re-reads rows near the end); a finished line may overwrite its row only below it.
+  std::vector<int> first_read(static_cast<std::size_t>(lines) + 1, std::numeric_limits<int>::max());
+  for (int b = lines - 1; b >= 0; --b) {
+    const int src = map[static_cast<std::size_t>(b)];
+    first_read[static_cast<std::size_t>(b)] =
+        std::min(first_read[static_cast<std::size_t>(b) + 1], src < 0 ? std::numeric_limits<int>::max() : src);
+  }
+  const T gains[2] = {static_cast<T>(p.kernel.low_gain), static_cast<T>(p.kernel.high_gain)};
+
+  pool.parallel_for(strips, [&](std::size_t s) {
+    thread_local std::vector<T> scratch;
+    const std::size_t W = L.strip_lanes;
+    scratch.resize(static_cast<std::size_t>(lines) * W);
+    const int lane0 = static_cast<int>(s * W);
+    const std::size_t lanes = std::min<std::size_t>(W, static_cast<std::size_t>(L.lanes - lane0));
+    const Strip<T> strip{scratch.data(), lines, lanes, W, first_class};
+    StreamingForwardLift<T> lift(p.kernel, strip);
+    // The next interior sample of each class (0 low, 1 high) to go out.
+    int next_out[2] = {L.parity & 1, (1 + L.parity) & 1};
+    auto put = [&](int e, int c) {
+      const T* line = strip.line(e + L.pad);
+      T* row = plane.row(mallat_index(L, e)) + lane0;
+      if constexpr (std::is_floating_point_v<T>) {
+        if (gains[c] != T(1)) return simd::scale_copy(line, row, gains[c], lanes);
+      }
+      std::memcpy(row, line, lanes * sizeof(T));
+    };
+    for (int gathered = 0; gathered < lines;) {
+      const int until = std::min(lines, gathered + kStreamLines);
+      for (; gathered < until; ++gathered) gather_line(strip, gathered, map, plane, lane0);
+      const int finished = lift.advance(gathered);
+      const int free_below = first_read[static_cast<std::size_t>(gathered)];
+      for (int c = 0; c < 2; ++c)
+        for (int& e = next_out[c]; e < L.n && e + L.pad < finished && mallat_index(L, e) < free_below; e += 2)
+          put(e, c);
+    }
+  });
+}
+
 template <class T>
 void run(const AxisPass& p, dwt::PlaneSpan<T> plane, base::ThreadPool& pool, bool inverse) {
   const Layout L = layout_of(p);
@@ -140,6 +219,7 @@ void run(const AxisPass& p, dwt::PlaneSpan<T> plane, base::ThreadPool& pool, boo
 
   const std::vector<int> map = source_map(L, p.boundary, inverse);
   if (p.axis == Axis::Horizontal) return run_rows(L, p, plane, pool, inverse, map);
+  if (!inverse) return run_columns_forward(L, p, plane, pool, map);
   const int lines = L.n + 2 * L.pad;
   const std::size_t strips = (static_cast<std::size_t>(L.lanes) + L.strip_lanes - 1) / L.strip_lanes;
   // Line 0 holds position -pad; its class follows from the parity of the first sample.

@@ -44,6 +44,15 @@ void Scale(float* HWY_RESTRICT t, float s, std::size_t n) {
   for (; i < n; ++i) t[i] *= s;
 }
 
+void ScaleCopy(const float* HWY_RESTRICT src, float* HWY_RESTRICT dst, float s, std::size_t n) {
+  const hn::ScalableTag<float> d;
+  const std::size_t N = hn::Lanes(d);
+  const auto vs = hn::Set(d, s);
+  std::size_t i = 0;
+  for (; i + N <= n; i += N) hn::StoreU(hn::Mul(hn::LoadU(d, src + i), vs), d, dst + i);
+  for (; i < n; ++i) dst[i] = src[i] * s;
+}
+
 void Predict53(std::int32_t* HWY_RESTRICT t, const std::int32_t* HWY_RESTRICT l, const std::int32_t* HWY_RESTRICT r,
                std::size_t n, bool inverse) {
   const hn::ScalableTag<std::int32_t> d;
@@ -145,6 +154,7 @@ namespace dwt_cpu::simd {
 HWY_EXPORT(LiftSymmetric);
 HWY_EXPORT(LiftGeneral);
 HWY_EXPORT(Scale);
+HWY_EXPORT(ScaleCopy);
 HWY_EXPORT(Predict53);
 HWY_EXPORT(Update53);
 HWY_EXPORT(LiftLinesSymmetric);
@@ -163,6 +173,9 @@ void lift_general(float* t, const float* l, const float* r, float cl, float cr, 
   HWY_DYNAMIC_DISPATCH(LiftGeneral)(t, l, r, cl, cr, n);
 }
 void scale(float* t, float s, std::size_t n) { HWY_DYNAMIC_DISPATCH(Scale)(t, s, n); }
+void scale_copy(const float* src, float* dst, float s, std::size_t n) {
+  HWY_DYNAMIC_DISPATCH(ScaleCopy)(src, dst, s, n);
+}
 void predict53(std::int32_t* t, const std::int32_t* l, const std::int32_t* r, std::size_t n, bool inverse) {
   HWY_DYNAMIC_DISPATCH(Predict53)(t, l, r, n, inverse);
 }

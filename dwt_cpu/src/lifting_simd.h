@@ -28,6 +28,9 @@ void scale_lines(float* data, std::size_t stride, std::size_t lanes, int first, 
 void predict53_lines(std::int32_t* data, std::size_t stride, std::size_t lanes, int first, int end, bool inverse);
 void update53_lines(std::int32_t* data, std::size_t stride, std::size_t lanes, int first, int end, bool inverse);
 
+// dst = s * src (the gains applied as a strip's lines are copied out).
+void scale_copy(const float* src, float* dst, float s, std::size_t n);
+
 // Splits n interleaved pairs: even[j] = src[2j], odd[j] = src[2j + 1].
 void deinterleave(const float* src, float* even, float* odd, std::size_t n);
 void deinterleave(const std::int32_t* src, std::int32_t* even, std::int32_t* odd, std::size_t n);

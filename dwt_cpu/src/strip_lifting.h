@@ -31,4 +31,29 @@ void lift_inverse(const dwt::Kernel& kernel, const Strip<float>& strip);
 void lift_forward(const dwt::Kernel& kernel, const Strip<std::int32_t>& strip);
 void lift_inverse(const dwt::Kernel& kernel, const Strip<std::int32_t>& strip);
 
+// lift_forward's steps (not its gains) applied while the strip's lines arrive top to bottom, so
+// that each line is lifted while it is still in the cache rather than once per step over the whole
+// strip. advance(available), with lines [0, available) filled, applies every step as far as they
+// allow; each target line gets each step once, with its neighbours at the stage whole-strip
+// lifting gives them, so once advance(strip.lines) has run the strip is bit for bit what
+// lift_forward leaves before its gains. advance returns how many leading lines no later step will
+// change.
+template <class T>
+class StreamingForwardLift {
+ public:
+  StreamingForwardLift(const dwt::Kernel& kernel, const Strip<T>& strip);
+  int advance(int available);
+
+ private:
+  struct Step {
+    int target_class;
+    double left, right;  // the kernel's coefficients (float strips)
+    int next;            // the next target line to lift
+  };
+  Strip<T> strip_;
+  Step steps_[4];
+  int step_count_ = 0;
+  void apply(const Step& step, int end) const;
+};
+
 }  // namespace dwt_cpu
