@@ -134,11 +134,12 @@ void run_rows(const Layout& L, const AxisPass& p, dwt::PlaneSpan<T> plane, base:
   });
 }
 
-// Line b of a vertical strip, gathered from its plane row (map[b]; -1: zeros), with the line
-// kPrefetchLines ahead asked for: each line is a short run of a row a plane's width from the last,
-// which the hardware prefetcher does not follow.
+// Line b of a vertical strip, gathered from its plane row (map[b]; -1: zeros) and multiplied by
+// `gain` unless that is 1, with the line kPrefetchLines ahead asked for: each line is a short run
+// of a row a plane's width from the last, which the hardware prefetcher does not follow.
 template <class T>
-void gather_line(const Strip<T>& strip, int b, const std::vector<int>& map, dwt::PlaneSpan<T> plane, int lane0) {
+void gather_line(const Strip<T>& strip, int b, const std::vector<int>& map, dwt::PlaneSpan<T> plane, int lane0,
+                 T gain) {
   T* line = strip.line(b);
   const int src = map[static_cast<std::size_t>(b)];
   if (src < 0) {
@@ -152,24 +153,29 @@ void gather_line(const Strip<T>& strip, int b, const std::vector<int>& map, dwt:
       for (std::size_t k = 0; k < strip.lanes * sizeof(T); k += 64) __builtin_prefetch(from + k);
     }
   }
+  if constexpr (std::is_floating_point_v<T>) {
+    if (gain != T(1)) return simd::scale_copy(plane.row(src) + lane0, line, gain, strip.lanes);
+  }
   std::memcpy(line, plane.row(src) + lane0, strip.lanes * sizeof(T));
 }
 
-// How many lines the streaming forward pass gathers between two advances of its lifting: few
-// enough that the lines a step touches are still in the first-level cache.
+// How many lines a vertical pass gathers between two advances of its lifting: few enough that the
+// lines a step touches are still in the first-level cache.
 constexpr int kStreamLines = 8;
 
-// The forward vertical pass, strip by strip: a strip's lines are gathered top to bottom and lifted
-// as they arrive (StreamingForwardLift), and each finished line goes to its Mallat row as soon as
-// no later gather reads that row, its class' gain applied on the way. A line then crosses the
-// cache about once, where gathering the whole strip, lifting it step by step and scaling it class
-// by class crossed it six times; and the low half leaves while it is still cached. The arithmetic
-// is lift_forward's, in the same order: the coefficients are the same to the bit.
+// The vertical pass, strip by strip: a strip's lines are gathered top to bottom (the inverse's
+// with its gains undone on the way) and lifted as they arrive (StreamingLift), and each finished
+// line goes to its row (the forward's to its Mallat row, with its gain applied on the way) as soon
+// as no later gather reads that row. A line then crosses the cache about once, where gathering the
+// whole strip, lifting it step by step and scaling it class by class crossed it six times, and
+// many lines leave while they are still cached. The arithmetic is lift_forward's or
+// lift_inverse's, in the same order: the results are the same to the bit.
 template <class T>
-void run_columns_forward(const Layout& L, const AxisPass& p, dwt::PlaneSpan<T> plane, base::ThreadPool& pool,
-                         const std::vector<int>& map) {
+void run_columns(const Layout& L, const AxisPass& p, dwt::PlaneSpan<T> plane, base::ThreadPool& pool,
+                 const std::vector<int>& map, bool inverse) {
   const int lines = L.n + 2 * L.pad;
   const std::size_t strips = (static_cast<std::size_t>(L.lanes) + L.strip_lanes - 1) / L.strip_lanes;
+  // Line 0 holds position -pad; its class follows from the parity of the first sample.
   const int first_class = (L.parity - L.pad) & 1;
   // first_read[b]: the lowest plane row that lines b, b + 1, ... read (the bottom extension
   // re-reads rows near the end); a finished line may overwrite its row only below it.
@@ -179,7 +185,14 @@ void run_columns_forward(const Layout& L, const AxisPass& p, dwt::PlaneSpan<T> p
     first_read[static_cast<std::size_t>(b)] =
         std::min(first_read[static_cast<std::size_t>(b) + 1], src < 0 ? std::numeric_limits<int>::max() : src);
   }
-  const T gains[2] = {static_cast<T>(p.kernel.low_gain), static_cast<T>(p.kernel.high_gain)};
+  // Per class (0 low, 1 high): the gain the forward pass applies on the way out, or the factor
+  // the inverse applies on the way in; 1 for integers and for a gain of 1.
+  T gain_out[2] = {T(1), T(1)}, gain_in[2] = {T(1), T(1)};
+  if constexpr (std::is_floating_point_v<T>) {
+    const double gains[2] = {p.kernel.low_gain, p.kernel.high_gain};
+    for (int c = 0; c < 2; ++c)
+      if (gains[c] != 1.0) (inverse ? gain_in[c] : gain_out[c]) = static_cast<T>(inverse ? 1.0 / gains[c] : gains[c]);
+  }
 
   pool.parallel_for(strips, [&](std::size_t s) {
     thread_local std::vector<T> scratch;
@@ -188,24 +201,26 @@ void run_columns_forward(const Layout& L, const AxisPass& p, dwt::PlaneSpan<T> p
     const int lane0 = static_cast<int>(s * W);
     const std::size_t lanes = std::min<std::size_t>(W, static_cast<std::size_t>(L.lanes - lane0));
     const Strip<T> strip{scratch.data(), lines, lanes, W, first_class};
-    StreamingForwardLift<T> lift(p.kernel, strip);
-    // The next interior sample of each class (0 low, 1 high) to go out.
+    StreamingLift<T> lift(p.kernel, strip, inverse);
+    // The next sample of each class to go out (interior line e sits at strip line e + pad).
     int next_out[2] = {L.parity & 1, (1 + L.parity) & 1};
     auto put = [&](int e, int c) {
       const T* line = strip.line(e + L.pad);
-      T* row = plane.row(mallat_index(L, e)) + lane0;
+      T* row = plane.row(inverse ? e : mallat_index(L, e)) + lane0;
       if constexpr (std::is_floating_point_v<T>) {
-        if (gains[c] != T(1)) return simd::scale_copy(line, row, gains[c], lanes);
+        if (gain_out[c] != T(1)) return simd::scale_copy(line, row, gain_out[c], lanes);
       }
       std::memcpy(row, line, lanes * sizeof(T));
     };
     for (int gathered = 0; gathered < lines;) {
       const int until = std::min(lines, gathered + kStreamLines);
-      for (; gathered < until; ++gathered) gather_line(strip, gathered, map, plane, lane0);
+      for (; gathered < until; ++gathered)
+        gather_line(strip, gathered, map, plane, lane0, gain_in[strip.class_of(gathered)]);
       const int finished = lift.advance(gathered);
       const int free_below = first_read[static_cast<std::size_t>(gathered)];
       for (int c = 0; c < 2; ++c)
-        for (int& e = next_out[c]; e < L.n && e + L.pad < finished && mallat_index(L, e) < free_below; e += 2)
+        for (int& e = next_out[c]; e < L.n && e + L.pad < finished && (inverse ? e : mallat_index(L, e)) < free_below;
+             e += 2)
           put(e, c);
     }
   });
@@ -219,58 +234,7 @@ void run(const AxisPass& p, dwt::PlaneSpan<T> plane, base::ThreadPool& pool, boo
 
   const std::vector<int> map = source_map(L, p.boundary, inverse);
   if (p.axis == Axis::Horizontal) return run_rows(L, p, plane, pool, inverse, map);
-  if (!inverse) return run_columns_forward(L, p, plane, pool, map);
-  const int lines = L.n + 2 * L.pad;
-  const std::size_t strips = (static_cast<std::size_t>(L.lanes) + L.strip_lanes - 1) / L.strip_lanes;
-  // Line 0 holds position -pad; its class follows from the parity of the first sample.
-  const int first_class = (L.parity - L.pad) & 1;
-
-  pool.parallel_for(strips, [&](std::size_t s) {
-    thread_local std::vector<T> scratch;
-    const std::size_t W = L.strip_lanes;
-    scratch.resize(static_cast<std::size_t>(lines) * W);
-    const int lane0 = static_cast<int>(s * W);
-    const std::size_t lanes = std::min<std::size_t>(W, static_cast<std::size_t>(L.lanes - lane0));
-    Strip<T> strip{scratch.data(), lines, lanes, W, first_class};
-
-    // Gather the (extended) signals into the strip.
-    for (int b = 0; b < lines; ++b) {
-      T* line = strip.line(b);
-      const int src = map[static_cast<std::size_t>(b)];
-      if (src < 0) {
-        std::fill(line, line + lanes, T(0));
-      } else if (p.axis == Axis::Vertical) {
-        // Each line is a short run of a row a plane's width from the last, which the hardware
-        // prefetcher does not follow: ask for the line kPrefetchLines ahead.
-        if (b + kPrefetchLines < lines) {
-          const int ahead = map[static_cast<std::size_t>(b + kPrefetchLines)];
-          if (ahead >= 0) {
-            const char* from = reinterpret_cast<const char*>(plane.row(ahead) + lane0);
-            for (std::size_t k = 0; k < lanes * sizeof(T); k += 64) __builtin_prefetch(from + k);
-          }
-        }
-        std::memcpy(line, plane.row(src) + lane0, lanes * sizeof(T));
-      } else {
-        for (std::size_t r = 0; r < lanes; ++r) line[r] = plane.row(lane0 + static_cast<int>(r))[src];
-      }
-    }
-
-    if (inverse)
-      lift_inverse(p.kernel, strip);
-    else
-      lift_forward(p.kernel, strip);
-
-    // Scatter the interior back: deinterleaved into the Mallat order (forward) or in signal order.
-    for (int e = 0; e < L.n; ++e) {
-      const T* line = strip.line(e + L.pad);
-      const int dst = inverse ? e : mallat_index(L, e);
-      if (p.axis == Axis::Vertical) {
-        std::memcpy(plane.row(dst) + lane0, line, lanes * sizeof(T));
-      } else {
-        for (std::size_t r = 0; r < lanes; ++r) plane.row(lane0 + static_cast<int>(r))[dst] = line[r];
-      }
-    }
-  });
+  run_columns(L, p, plane, pool, map, inverse);
 }
 
 }  // namespace

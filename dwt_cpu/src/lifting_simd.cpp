@@ -109,9 +109,6 @@ void LiftLinesGeneral(float* data, std::size_t stride, std::size_t lanes, int fi
   ForTargetLines(data, stride, first, end,
                  [&](float* t, const float* l, const float* r) { LiftGeneral(t, l, r, cl, cr, lanes); });
 }
-void ScaleLines(float* data, std::size_t stride, std::size_t lanes, int first, int end, float s) {
-  for (int b = first; b < end; b += 2) Scale(data + static_cast<std::size_t>(b) * stride, s, lanes);
-}
 void Predict53Lines(std::int32_t* data, std::size_t stride, std::size_t lanes, int first, int end, bool inverse) {
   ForTargetLines(data, stride, first, end, [&](std::int32_t* t, const std::int32_t* l, const std::int32_t* r) {
     Predict53(t, l, r, lanes, inverse);
@@ -159,7 +156,6 @@ HWY_EXPORT(Predict53);
 HWY_EXPORT(Update53);
 HWY_EXPORT(LiftLinesSymmetric);
 HWY_EXPORT(LiftLinesGeneral);
-HWY_EXPORT(ScaleLines);
 HWY_EXPORT(Predict53Lines);
 HWY_EXPORT(Update53Lines);
 HWY_EXPORT(DeinterleaveFloat);
@@ -187,9 +183,6 @@ void lift_lines_symmetric(float* data, std::size_t stride, std::size_t lanes, in
 }
 void lift_lines_general(float* data, std::size_t stride, std::size_t lanes, int first, int end, float cl, float cr) {
   HWY_DYNAMIC_DISPATCH(LiftLinesGeneral)(data, stride, lanes, first, end, cl, cr);
-}
-void scale_lines(float* data, std::size_t stride, std::size_t lanes, int first, int end, float s) {
-  HWY_DYNAMIC_DISPATCH(ScaleLines)(data, stride, lanes, first, end, s);
 }
 void predict53_lines(std::int32_t* data, std::size_t stride, std::size_t lanes, int first, int end, bool inverse) {
   HWY_DYNAMIC_DISPATCH(Predict53Lines)(data, stride, lanes, first, end, inverse);

@@ -20,11 +20,9 @@ void update53(std::int32_t* t, const std::int32_t* l, const std::int32_t* r, std
 
 // The same over every other line of a strip, one call per lifting step (a call per line costs a
 // dispatch per 64 lanes): for b = first, first + 2, ... with b + 1 < end, line b (lines `stride`
-// apart, `lanes` long) is the target and lines b - 1 and b + 1 its neighbours. scale_lines scales
-// lines first, first + 2, ... below end.
+// apart, `lanes` long) is the target and lines b - 1 and b + 1 its neighbours.
 void lift_lines_symmetric(float* data, std::size_t stride, std::size_t lanes, int first, int end, float c);
 void lift_lines_general(float* data, std::size_t stride, std::size_t lanes, int first, int end, float cl, float cr);
-void scale_lines(float* data, std::size_t stride, std::size_t lanes, int first, int end, float s);
 void predict53_lines(std::int32_t* data, std::size_t stride, std::size_t lanes, int first, int end, bool inverse);
 void update53_lines(std::int32_t* data, std::size_t stride, std::size_t lanes, int first, int end, bool inverse);
 

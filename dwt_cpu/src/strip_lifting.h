@@ -22,35 +22,29 @@ struct Strip {
   int class_of(int b) const { return (b + first_class) & 1; }
 };
 
-// Analysis: the kernel's lifting steps then its gains. Lines within `steps` of either end are left
-// with meaningless values; the caller pads by at least kernel.steps.size().
-void lift_forward(const dwt::Kernel& kernel, const Strip<float>& strip);
-// Synthesis on an interleaved, extended coefficient strip: gains undone, then the steps reversed.
-void lift_inverse(const dwt::Kernel& kernel, const Strip<float>& strip);
-// The reversible 5/3 with T.800's integer rounding.
-void lift_forward(const dwt::Kernel& kernel, const Strip<std::int32_t>& strip);
-void lift_inverse(const dwt::Kernel& kernel, const Strip<std::int32_t>& strip);
-
-// lift_forward's steps (not its gains) applied while the strip's lines arrive top to bottom, so
-// that each line is lifted while it is still in the cache rather than once per step over the whole
-// strip. advance(available), with lines [0, available) filled, applies every step as far as they
-// allow; each target line gets each step once, with its neighbours at the stage whole-strip
-// lifting gives them, so once advance(strip.lines) has run the strip is bit for bit what
-// lift_forward leaves before its gains. advance returns how many leading lines no later step will
-// change.
+// A kernel's lifting steps over a strip (analysis: the steps in order; synthesis: reversed and
+// negated, on lines whose gains the caller has undone; the caller applies the analysis gains),
+// applied while the strip's lines arrive top to bottom, so that each line is lifted while it is
+// still in the cache rather than once per step over the whole strip. advance(available), with
+// lines [0, available) filled, applies every step as far as they allow; each target line gets each
+// step once, with its neighbours at the stage lifting the whole strip step by step gives them, so
+// once advance(strip.lines) has run the strip is bit for bit what that gives. Lines within
+// kernel.steps.size() of either end are left with meaningless values: the caller pads by at least
+// that. advance returns how many leading lines no later step will change.
 template <class T>
-class StreamingForwardLift {
+class StreamingLift {
  public:
-  StreamingForwardLift(const dwt::Kernel& kernel, const Strip<T>& strip);
+  StreamingLift(const dwt::Kernel& kernel, const Strip<T>& strip, bool inverse);
   int advance(int available);
 
  private:
   struct Step {
     int target_class;
-    double left, right;  // the kernel's coefficients (float strips)
+    double left, right;  // the coefficients, negated for the inverse (float strips)
     int next;            // the next target line to lift
   };
   Strip<T> strip_;
+  bool inverse_;
   Step steps_[4];
   int step_count_ = 0;
   void apply(const Step& step, int end) const;
