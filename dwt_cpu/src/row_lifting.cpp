@@ -44,7 +44,7 @@ void for_step(const SplitSignal<T>& s, int target_class, auto op) {
   op(target, other, other + 1, static_cast<std::size_t>(r.count));
 }
 
-void lift_float(const dwt::Kernel& k, const SplitSignal<float>& s, bool inverse) {
+void lift_float(const dwt::Kernel& k, const SplitSignal<float>& s, bool inverse, bool gains = true) {
   if (inverse) {
     simd::scale(s.low, static_cast<float>(1.0 / k.low_gain), static_cast<std::size_t>(s.low_size));
     simd::scale(s.high, static_cast<float>(1.0 / k.high_gain), static_cast<std::size_t>(s.high_size));
@@ -61,7 +61,7 @@ void lift_float(const dwt::Kernel& k, const SplitSignal<float>& s, bool inverse)
         simd::lift_general(t, l, r, cl, cr, count);
     });
   }
-  if (!inverse) {
+  if (!inverse && gains) {
     simd::scale(s.low, static_cast<float>(k.low_gain), static_cast<std::size_t>(s.low_size));
     simd::scale(s.high, static_cast<float>(k.high_gain), static_cast<std::size_t>(s.high_size));
   }
@@ -74,6 +74,7 @@ void require_reversible(const dwt::Kernel& k) {
 }  // namespace
 
 void lift_forward(const dwt::Kernel& k, const SplitSignal<float>& s) { lift_float(k, s, false); }
+void lift_forward_steps(const dwt::Kernel& k, const SplitSignal<float>& s) { lift_float(k, s, false, false); }
 void lift_inverse(const dwt::Kernel& k, const SplitSignal<float>& s) { lift_float(k, s, true); }
 
 void lift_forward(const dwt::Kernel& k, const SplitSignal<std::int32_t>& s) {

@@ -21,6 +21,8 @@ struct SplitSignal {
 };
 
 void lift_forward(const dwt::Kernel& kernel, const SplitSignal<float>& s);
+// lift_forward without its gains, for a caller that applies them as it copies the result out.
+void lift_forward_steps(const dwt::Kernel& kernel, const SplitSignal<float>& s);
 void lift_inverse(const dwt::Kernel& kernel, const SplitSignal<float>& s);
 void lift_forward(const dwt::Kernel& kernel, const SplitSignal<std::int32_t>& s);
 void lift_inverse(const dwt::Kernel& kernel, const SplitSignal<std::int32_t>& s);
