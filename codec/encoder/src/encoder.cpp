@@ -128,12 +128,35 @@ Tier1Target tier1_target(const Tile& tile, const EncodeParams& params, double sa
   return {Tier1Target::Kind::Distortion, 0.8 * goal * share};
 }
 
-// Tier-2: every packet of the tile in progression order, appended to `body` (only the packet
-// headers when !copy_body). `passes[b]` lists block b's cumulative passes after each layer.
-// Returns the packets' total length.
+// Tier-2's packet writer for precinct p of resolution res of tile-component tc, with the passes
+// `passes[b]` lists for each block b (cumulative, after each layer).
+t2::PrecinctPacketWriter precinct_writer(const CodedTile& coded, const EncodeParams& params, const Precinct& p,
+                                         const std::vector<std::vector<int>>& passes) {
+  std::vector<t2::PrecinctBand> bands;
+  for (const PrecinctBand& pb : p.bands) {
+    t2::PrecinctBand band;
+    band.cols = pb.cols;
+    band.rows = pb.rows;
+    for (const CodeBlock& cb : pb.blocks) {
+      if (!coded.ht_candidates.empty()) {  // HT during rate control: the cleanup a trial picks
+        HtPacketPlan ht = ht_packet_plan(coded, cb.index, passes[cb.index]);
+        band.blocks.push_back(t2::CodeBlockCoding{ht.encoded, std::move(ht.cumulative_passes)});
+        continue;
+      }
+      const t1::EncodedBlock& eb = coded.blocks[cb.index];
+      band.blocks.push_back(t2::CodeBlockCoding{&eb, passes[cb.index]});
+    }
+    bands.push_back(std::move(band));
+  }
+  return t2::PrecinctPacketWriter(std::move(bands), params.block_style,
+                                  params.ht ? t2::BlockCoder::Ht : t2::BlockCoder::Ebcot);
+}
+
+// Tier-2: every packet of the tile in progression order, appended to `body`. `passes[b]` lists
+// block b's cumulative passes after each layer. Returns the packets' total length.
 std::size_t write_tile_packets(const CodedTile& coded, const EncodeParams& params,
-                               const std::vector<std::vector<int>>& passes, int layers, std::vector<std::uint8_t>& body,
-                               bool copy_body) {
+                               const std::vector<std::vector<int>>& passes, int layers,
+                               std::vector<std::uint8_t>& body) {
   const Tile& tile = coded.tile;
 
   std::vector<t2::ComponentGeometry> geometry;
@@ -146,37 +169,48 @@ std::size_t write_tile_packets(const CodedTile& coded, const EncodeParams& param
       cg.resolutions.push_back(t2::ResolutionGeometry{res.rect.x0, res.rect.y0, res.rect.x1, res.rect.y1, res.ppx,
                                                       res.ppy, res.precincts_wide, res.precincts_high});
       auto& list = by_resolution.emplace_back();
-      for (const Precinct& p : res.precincts) {
-        std::vector<t2::PrecinctBand> bands;
-        for (const PrecinctBand& pb : p.bands) {
-          t2::PrecinctBand band;
-          band.cols = pb.cols;
-          band.rows = pb.rows;
-          for (const CodeBlock& cb : pb.blocks) {
-            if (!coded.ht_candidates.empty()) {  // HT during rate control: the cleanup a trial picks
-              HtPacketPlan ht = ht_packet_plan(coded, cb.index, passes[cb.index]);
-              band.blocks.push_back(t2::CodeBlockCoding{ht.encoded, std::move(ht.cumulative_passes)});
-              continue;
-            }
-            const t1::EncodedBlock& eb = coded.blocks[cb.index];
-            band.blocks.push_back(t2::CodeBlockCoding{&eb, passes[cb.index]});
-          }
-          bands.push_back(std::move(band));
-        }
-        list.emplace_back(std::move(bands), params.block_style, params.ht ? t2::BlockCoder::Ht : t2::BlockCoder::Ebcot);
-      }
+      for (const Precinct& p : res.precincts) list.push_back(precinct_writer(coded, params, p, passes));
     }
     geometry.push_back(std::move(cg));
   }
   std::size_t total = 0;
   std::uint16_t sequence = 0;
   for (const t2::PacketId& id :
-       t2::progression(to_t2(params.order), layers, tile.rect.x0, tile.rect.y0, tile.rect.x1, tile.rect.y1, geometry)) {
+       t2::progression(to_t2(params.order), layers, tile.rect.x0, tile.rect.y0, tile.rect.x1, tile.rect.y1, geometry))
     total += writers[static_cast<std::size_t>(id.component)][static_cast<std::size_t>(id.resolution)]
                     [static_cast<std::size_t>(id.precinct)]
-                        .write_packet(id.layer, params.sop, params.eph, sequence++, body, copy_body);
-    if (!copy_body) body.clear();  // only the lengths are wanted
-  }
+                        .write_packet(id.layer, params.sop, params.eph, sequence++, body, true);
+  return total;
+}
+
+// The length write_tile_packets would return, for rate control's trials: a packet's length does
+// not depend on where the progression puts it (SOP's sequence number has a fixed size), so each
+// precinct's packets are measured on their own, in parallel, their headers only.
+std::size_t tile_packets_length(const CodedTile& coded, const EncodeParams& params,
+                                const std::vector<std::vector<int>>& passes, int layers, base::ThreadPool& pool) {
+  std::vector<const Precinct*> precincts;
+  for (const TileComponent& tc : coded.tile.components)
+    for (const Resolution& res : tc.resolutions)
+      for (const Precinct& p : res.precincts) precincts.push_back(&p);
+  // The largest first, so that no thread is left with a big one at the end.
+  auto blocks = [](const Precinct* p) {
+    std::size_t n = 0;
+    for (const PrecinctBand& pb : p->bands) n += pb.blocks.size();
+    return n;
+  };
+  std::stable_sort(precincts.begin(), precincts.end(),
+                   [&](const Precinct* a, const Precinct* b) { return blocks(a) > blocks(b); });
+  std::vector<std::size_t> lengths(precincts.size());
+  pool.parallel_for(precincts.size(), [&](std::size_t i) {
+    t2::PrecinctPacketWriter writer = precinct_writer(coded, params, *precincts[i], passes);
+    thread_local std::vector<std::uint8_t> headers;
+    for (int layer = 0; layer < layers; ++layer) {
+      lengths[i] += writer.write_packet(layer, params.sop, params.eph, 0, headers, false);
+      headers.clear();
+    }
+  });
+  std::size_t total = 0;
+  for (std::size_t length : lengths) total += length;
   return total;
 }
 
@@ -191,7 +225,7 @@ std::vector<std::uint8_t> tile_body(const CodedTile& coded, const EncodeParams& 
   }
   std::vector<std::uint8_t> body;
   body.reserve(data_bytes + 4096);
-  write_tile_packets(coded, params, passes, layers, body, true);
+  write_tile_packets(coded, params, passes, layers, body);
   return body;
 }
 
@@ -276,9 +310,8 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
   }();
   const FileSizer file_size = [&](const LayerPasses& trial) {
     std::size_t bytes = fixed_bytes;
-    std::vector<std::uint8_t> scratch;
     for (std::size_t t = 0; t < tiles.size(); ++t)
-      bytes += write_tile_packets(tiles[t], params, trial[t], layers, scratch, false);
+      bytes += tile_packets_length(tiles[t], params, trial[t], layers, pool);
     // A JP2 codestream box past 4 GiB takes a longer header: measure such a file whole.
     return bytes < 0xFFFF0000u ? bytes : assemble(trial).size();
   };

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -77,12 +78,16 @@ LayerPasses select_for_psnr(const std::vector<CodedTile>& tiles, const rate::Rat
 
 // Byte targets for the whole file, headers and packet headers included: bisect a common scale of
 // the layers' data budgets until the file fits the last target, as full as it gets.
+// `overhead`: the file with every packet empty, measured on the first call (an empty packet's
+// header is one bit, whatever its blocks hold, so it does not change between rounds).
 LayerPasses select_for_bytes(const std::vector<CodedTile>& tiles, const rate::RateAllocator& allocator,
-                             std::size_t block_count, const RateControlInputs& in, const FileSizer& file_size) {
+                             std::size_t block_count, const RateControlInputs& in, const FileSizer& file_size,
+                             std::optional<std::size_t>& empty_file) {
   const EncodeParams& params = in.params;
   const auto target = static_cast<std::size_t>(params.layers.back().value);
   const std::vector<std::vector<int>> none(params.layers.size(), std::vector<int>(block_count, 0));
-  const std::size_t overhead = file_size(per_tile(tiles, none));
+  if (!empty_file) empty_file = file_size(per_tile(tiles, none));
+  const std::size_t overhead = *empty_file;
   if (overhead > target)
     throw EncodeError("the byte target " + std::to_string(target) + " is below the " + std::to_string(overhead) +
                       " bytes the headers alone take");
@@ -203,19 +208,24 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
   double recode_ms = 0;
   LayerPasses passes;
   const bool ht = in.params.ht;
+  // Every block of the image, in tile order: (tile, block).
+  std::vector<std::pair<std::size_t, std::size_t>> blocks;
+  for (std::size_t t = 0; t < tiles.size(); ++t)
+    for (std::size_t b = 0; b < tiles[t].blocks.size(); ++b) blocks.emplace_back(t, b);
+  std::optional<std::size_t> empty_file;
   for (int round = 0;; ++round) {
     if (ht) sync_ht_missing_msbs(tiles);
-    std::vector<std::vector<rate::HullPoint>> hulls;
+    std::vector<std::vector<rate::HullPoint>> hulls(blocks.size());
+    in.pool.parallel_for(blocks.size(), [&](std::size_t g) {
+      const auto [t, b] = blocks[g];
+      hulls[g] = rate::convex_hull(tiles[t].blocks[b].passes, tiles[t].jobs[b].weight);
+    });
     double energy = 0;
-    for (const CodedTile& tile : tiles)
-      for (std::size_t b = 0; b < tile.blocks.size(); ++b) {
-        hulls.push_back(rate::convex_hull(tile.blocks[b].passes, tile.jobs[b].weight));
-        energy += tile.blocks[b].energy * tile.jobs[b].weight;
-      }
+    for (const auto& [t, b] : blocks) energy += tiles[t].blocks[b].energy * tiles[t].jobs[b].weight;
     const rate::RateAllocator allocator(hulls);
     passes = in.params.layers[0].kind == LayerTarget::Kind::Psnr
                  ? select_for_psnr(tiles, allocator, hulls, energy, in)
-                 : select_for_bytes(tiles, allocator, hulls.size(), in, file_size);
+                 : select_for_bytes(tiles, allocator, hulls.size(), in, file_size, empty_file);
     if (ht) {
       // HT: blocks whose choice lies at the edge of the cleanups coded get the next planes coded.
       // An edge moves by two planes a round and the prediction is rarely further off than that.
