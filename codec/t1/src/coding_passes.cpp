@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 
+#include "column_masks_simd.h"
 #include "distortion.h"
 #include "codec/t1/stripe_columns.h"
 
@@ -37,20 +38,6 @@ inline void add_gain(DistortionSum& sum, std::int64_t gain) {
 
 inline int bit_at(std::uint32_t magnitude, int plane) { return static_cast<int>((magnitude >> plane) & 1u); }
 
-// Walks the stripe columns in the scan order of T.800 D.1: stripes of four rows top to bottom,
-// columns left to right. `visit(word, i, rows)` gets the column's word, the index of its top
-// coefficient in the per-coefficient arrays and how many of its rows lie in the block (4 but in a
-// last, partial stripe).
-template <class Visit>
-inline void for_each_column(const BlockView& v, Visit&& visit) {
-  for (int y0 = 0; y0 < v.height; y0 += 4) {
-    const int rows = std::min(4, v.height - y0);
-    std::uint32_t* word = v.columns + (y0 / 4) * v.column_stride;
-    const std::ptrdiff_t top = v.index(0, y0);
-    for (int x = 0; x < v.width; ++x) visit(word + x, top + x, rows);
-  }
-}
-
 // Calls row(r, i) for the rows r of a column from `first` on, i the coefficient's index; unrolled
 // for a full column, where a four-trip loop would cost a mispredicted exit every time.
 template <class Row>
@@ -77,23 +64,60 @@ inline std::int64_t become_significant(const BlockView& v, std::uint32_t* w, std
   return 0;
 }
 
+// Calls visit(k, x) for the columns x = x0 + k of a stripe, in chunks of up to 64 (simd::kMaskColumns),
+// whose bit is set in the chunk's mask(x0, n); visit returns bits to add to the rest of the chunk's
+// mask (a column a pass has just made busy). A quiet column costs no load of its own.
+template <class Mask, class Visit>
+inline void for_each_masked_column(int width, Mask&& mask, Visit&& visit) {
+  for (int x0 = 0; x0 < width; x0 += static_cast<int>(simd::kMaskColumns)) {
+    const int n = std::min(static_cast<int>(simd::kMaskColumns), width - x0);
+    for (std::uint64_t todo = mask(x0, n); todo != 0;) {
+      const int k = std::countr_zero(todo);
+      todo &= todo - 1;
+      todo |= visit(k, x0 + k);
+    }
+  }
+}
+
+// The bit of the column after column k of a chunk of n, which a coefficient that column k has made
+// significant brings into its window; 0 past the chunk (the next chunk's mask is made after).
+inline std::uint64_t next_column_bit(int k, int n) { return k + 1 < n ? std::uint64_t{2} << k : 0; }
+
 // D.3.1: insignificant coefficients with at least one significant neighbour.
 template <bool kMeasure, class Symbols>
 double significance_pass_impl(const BlockView v, int plane, const ZeroCodingTable& zc, Symbols s) {
   const PlaneDistortion d(plane + v.fine_bits);
   DistortionSum gain(plane + v.fine_bits, v.fine_bits);
-  for_each_column(v, [&](std::uint32_t* w, std::ptrdiff_t top, int rows) {
-    // Nothing significant in the whole window: no candidate here, and none will appear.
-    if ((*w & column::kWindow) == 0) return;
-    for_each_row(v, top, 0, rows, [&](int r, std::ptrdiff_t i) {
-      const std::uint32_t around = *w >> (3 * r);  // reloaded: the row above may just have changed it
-      if ((around & column::kCentre) || !(around & column::kNeighbours)) return;
-      const int bit = bit_at(v.magnitude[i], plane);
-      s.decision(bit, zc[around & column::kNeighbourhood]);
-      *w |= column::visited(r);
-      if (bit) add_gain<kMeasure>(gain, become_significant<kMeasure>(v, w, i, r, d, s));
-    });
-  });
+  for (int y0 = 0; y0 < v.height; y0 += 4) {
+    const int rows = std::min(4, v.height - y0);
+    std::uint32_t* words = v.columns + (y0 / 4) * v.column_stride;
+    const std::ptrdiff_t stripe_top = v.index(0, y0);
+    int chunk = 0;
+    // Columns with nothing significant in their window have no candidate; a column that becomes
+    // significant here gives its eastern neighbour one, which joins the walk.
+    for_each_masked_column(
+        v.width,
+        [&](int x0, int n) {
+          chunk = n;
+          return simd::columns_with(words + x0, static_cast<std::size_t>(n), column::kWindow);
+        },
+        [&](int k, int x) {
+          std::uint32_t* w = words + x;
+          bool any = false;
+          for_each_row(v, stripe_top + x, 0, rows, [&](int r, std::ptrdiff_t i) {
+            const std::uint32_t around = *w >> (3 * r);  // reloaded: the row above may just have changed it
+            if ((around & column::kCentre) || !(around & column::kNeighbours)) return;
+            const int bit = bit_at(v.magnitude[i], plane);
+            s.decision(bit, zc[around & column::kNeighbourhood]);
+            *w |= column::visited(r);
+            if (bit) {
+              any = true;
+              add_gain<kMeasure>(gain, become_significant<kMeasure>(v, w, i, r, d, s));
+            }
+          });
+          return any ? next_column_bit(k, chunk) : 0;
+        });
+  }
   return gain.value();
 }
 
@@ -102,23 +126,32 @@ template <bool kMeasure, class Symbols>
 double refinement_pass_impl(const BlockView v, int plane, Symbols s) {
   const PlaneDistortion d(plane + v.fine_bits);
   DistortionSum gain(plane + v.fine_bits, v.fine_bits);
-  for_each_column(v, [&](std::uint32_t* w, std::ptrdiff_t top, int /*rows: only rows in the block are significant*/) {
-    const std::uint32_t word = *w;  // refinement changes no significance: one load does
-    // Significant before this plane: significant, and not made so by this plane's first pass.
-    const unsigned due = column::significant_rows(word) & ~(word >> 24) & 0xFu;
-    if (due == 0) return;
-    std::uint32_t refined = 0;
-    // The due rows one by one, lowest first (scan order): a branch per row coded rather than a
-    // poorly predicted one per row of the column.
-    for (unsigned left = due; left != 0; left &= left - 1) {
-      const int r = std::countr_zero(left);
-      const std::ptrdiff_t i = top + r * v.stride;
-      s.decision(bit_at(v.magnitude[i], plane), refinement_context(word, r));
-      refined |= column::refined(r);
-      if constexpr (kMeasure) gain.add_units(d.refinement_units(v.fine[i]));
-    }
-    *w = word | refined;
-  });
+  for (int y0 = 0; y0 < v.height; y0 += 4) {
+    std::uint32_t* words = v.columns + (y0 / 4) * v.column_stride;
+    const std::ptrdiff_t stripe_top = v.index(0, y0);
+    // Only columns with a significant row (only rows in the block are); refinement makes none.
+    for_each_masked_column(
+        v.width,
+        [&](int x0, int n) { return simd::columns_with(words + x0, static_cast<std::size_t>(n), column::kSelfAll); },
+        [&](int, int x) -> std::uint64_t {
+          std::uint32_t* w = words + x;
+          const std::uint32_t word = *w;  // refinement changes no significance: one load does
+          // Significant before this plane: significant, and not made so by this plane's first pass.
+          const unsigned due = column::significant_rows(word) & ~(word >> 24) & 0xFu;
+          std::uint32_t refined = 0;
+          // The due rows one by one, lowest first (scan order): a branch per row coded rather than a
+          // poorly predicted one per row of the column.
+          for (unsigned left = due; left != 0; left &= left - 1) {
+            const int r = std::countr_zero(left);
+            const std::ptrdiff_t i = stripe_top + x + r * v.stride;
+            s.decision(bit_at(v.magnitude[i], plane), refinement_context(word, r));
+            refined |= column::refined(r);
+            if constexpr (kMeasure) gain.add_units(d.refinement_units(v.fine[i]));
+          }
+          *w = word | refined;
+          return 0;
+        });
+  }
   return gain.value();
 }
 
@@ -177,48 +210,53 @@ template <bool kMeasure>
     const std::ptrdiff_t stripe_top = v.index(0, y0);
     // Run-length mode (a full column with none of the four significant or visited, all with the
     // all-zero neighbourhood: zero-coding context 0 in every orientation) with no 1 at this plane:
-    // one symbol 0. Coding such a column changes nothing, so a run of them is found first and coded
-    // in one call.
-    auto quiet = [&](int x) {
-      return ((words[x] & (column::kWindow | column::kVisitedAll)) | (magnitudes[x] >> plane)) == 0;
-    };
-    for (int x = 0; x < v.width; ++x) {
-      std::uint32_t* w = words + x;
-      const std::ptrdiff_t top = stripe_top + x;
-      int r = 0;
-      if (rows == 4) {
-        if (quiet(x)) {
-          int run = 1;
-          while (x + run < v.width && quiet(x + run)) ++run;
+    // one symbol 0. Coding such a column changes nothing, so a chunk's quiet columns are found at
+    // once (simd::quiet_columns) and each run of them coded in one call. A column that makes a
+    // coefficient significant puts it in its eastern neighbour's window: that one is no longer quiet.
+    for (int x0 = 0; x0 < v.width; x0 += static_cast<int>(simd::kMaskColumns)) {
+      const int n = std::min(static_cast<int>(simd::kMaskColumns), v.width - x0);
+      std::uint64_t quiet = rows == 4 ? simd::quiet_columns(words + x0, magnitudes + x0, static_cast<std::size_t>(n),
+                                                            column::kWindow | column::kVisitedAll, plane)
+                                      : 0;
+      for (int k = 0; k < n; ++k) {
+        if ((quiet >> k) & 1u) {
+          const int run = std::countr_one(quiet >> k);
           mq.encode_zeros(cx[kRunLengthContext], run);
-          x += run - 1;
+          k += run - 1;
           continue;
         }
-        const std::uint32_t word = *w;
-        // Nothing to code when each of the four is significant or was coded by the significance
-        // pass; only the marks need clearing.
-        if ((column::significant_rows(word) | (word >> 24)) == 0xFu) {
-          *w = word & ~column::kVisitedAll;
-          continue;
+        const int x = x0 + k;
+        std::uint32_t* w = words + x;
+        const std::ptrdiff_t top = stripe_top + x;
+        const std::uint32_t before = *w;
+        int r = 0;
+        if (rows == 4) {
+          // Nothing to code when each of the four is significant or was coded by the significance
+          // pass; only the marks need clearing.
+          if ((column::significant_rows(before) | (before >> 24)) == 0xFu) {
+            *w = before & ~column::kVisitedAll;
+            continue;
+          }
+          // Run-length mode with a 1 in the column: the row of the first one.
+          if ((before & (column::kWindow | column::kVisitedAll)) == 0) {
+            r = first_one_in_column(v, top, plane);
+            mq.encode(1, cx[kRunLengthContext]);
+            mq.encode(r >> 1, cx[kUniformContext]);
+            mq.encode(r & 1, cx[kUniformContext]);
+            add_gain<kMeasure>(gain, become_significant<kMeasure>(v, w, top + r * v.stride, r, d, s));
+            ++r;
+          }
         }
-        // Run-length mode with a 1 in the column: the row of the first one.
-        if ((word & (column::kWindow | column::kVisitedAll)) == 0) {
-          r = first_one_in_column(v, top, plane);
-          mq.encode(1, cx[kRunLengthContext]);
-          mq.encode(r >> 1, cx[kUniformContext]);
-          mq.encode(r & 1, cx[kUniformContext]);
-          add_gain<kMeasure>(gain, become_significant<kMeasure>(v, w, top + r * v.stride, r, d, s));
-          ++r;
-        }
+        for_each_row(v, top, r, rows, [&](int row, std::ptrdiff_t i) {
+          const std::uint32_t word = *w;
+          if (word & (column::self(row) | column::visited(row))) return;
+          const int bit = bit_at(v.magnitude[i], plane);
+          mq.encode(bit, cx[zc[(word >> (3 * row)) & column::kNeighbourhood]]);
+          if (bit) add_gain<kMeasure>(gain, become_significant<kMeasure>(v, w, i, row, d, s));
+        });
+        if ((*w ^ before) & column::kSelfAll) quiet &= ~next_column_bit(k, n);
+        *w &= ~column::kVisitedAll;
       }
-      for_each_row(v, top, r, rows, [&](int row, std::ptrdiff_t i) {
-        const std::uint32_t word = *w;
-        if (word & (column::self(row) | column::visited(row))) return;
-        const int bit = bit_at(v.magnitude[i], plane);
-        mq.encode(bit, cx[zc[(word >> (3 * row)) & column::kNeighbourhood]]);
-        if (bit) add_gain<kMeasure>(gain, become_significant<kMeasure>(v, w, i, row, d, s));
-      });
-      *w &= ~column::kVisitedAll;
     }
   }
   coder = mq;
