@@ -53,7 +53,8 @@ struct EncodedBlock {
 // than `min_slope` weighted distortion per byte (weight * distortion decrease / bytes, the bytes
 // estimated from the coder's state), or that bit-plane alone where the block's slopes behave
 // (a plane above it paid, this one bought something, the next brings no swell of new
-// coefficients: block_encoder.cpp, stops_after_quiet_plane). The codeword is then terminated there, as if that pass
+// coefficients; or, before any plane paid, one that bought under a 32nd of the slope: block_encoder.cpp,
+// stops_after_quiet_plane). The codeword is then terminated there, as if that pass
 // were the last. A block whose weighted energy (all the distortion it could ever buy) is below `min_slope` times one
 // byte is not coded at all: no pass, stopped_early set. 0: every pass. `pass_limit`, when positive, also stops the
 // block (stopped_early set) after that many passes.
