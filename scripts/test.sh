@@ -6,22 +6,32 @@
 # First, the C++ sources must be formatted as .clang-format says (check_format.sh).
 # Then the codec is built alone and installed, and examples/ is built against it (check_codec_alone.sh).
 # Last, every file reader is fuzzed for FUZZ_SECONDS (default 30) each (scripts/fuzz.sh).
+# Each phase's time is printed as it ends ("test.sh: PHASE took N s"), so that a slow CI run says where.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
-bash scripts/check_format.sh
+started=$SECONDS
+phase() {
+  local name=$1 t0=$SECONDS
+  shift
+  "$@"
+  echo "test.sh: $name took $((SECONDS - t0)) s (job so far $((SECONDS - started)) s)"
+}
+run_ctest() { (cd "$1" && ctest --output-on-failure --timeout "$2" -j "$(nproc)"); }
 
-bash scripts/build.sh build
-(cd build && ctest --output-on-failure --timeout 900 -j "$(nproc)")
+phase setup bash scripts/setup.sh
+phase "format check" bash scripts/check_format.sh
+
+phase "Release build" bash scripts/build.sh build
+phase "Release tests" run_ctest build 900
 
 # The codec alone, as a library user gets it: built without the performer (nothing GPL looked for or
 # linked), installed into a prefix, and examples/ built against the installed package and run.
-bash scripts/check_codec_alone.sh
+phase "codec-alone build and check" bash scripts/check_codec_alone.sh
 
-bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGPUJ2K_SANITIZE=ON
+phase "ASan+UBSan build" bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGPUJ2K_SANITIZE=ON
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
-(cd build-asan && ctest --output-on-failure --timeout 1800 -j "$(nproc)")
+phase "ASan+UBSan tests" run_ctest build-asan 1800
 
-bash scripts/fuzz.sh
+phase "fuzzing" bash scripts/fuzz.sh
