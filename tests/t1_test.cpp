@@ -1037,3 +1037,42 @@ TEST(T1StopRule, PassLimitEndsTheBlockThere) {
   EXPECT_FALSE(unlimited.stopped_early);
   EXPECT_EQ(unlimited.data, full.data);
 }
+
+namespace {
+
+// The stop rule's one-plane stop for a block no plane has paid for yet (block_encoder.cpp,
+// stops_after_quiet_plane): a top plane that bought far less than the stop slope (under a 32nd of
+// it) ends the block after that one pass; one only somewhat below it (a quarter) does not, and the
+// block goes on to the next plane. The block: Gaussian coefficients with one outlier alone in the
+// top bit-plane, so that the top plane's slope is poor while the block's energy keeps it well clear
+// of the skip for blocks worth no pass.
+TEST(T1StopRule, UnpaidBlockStopsAfterOnlyAFarQuietPlane) {
+  std::mt19937 rng(2027);
+  std::normal_distribution<float> coefficient(0.0f, 16.0f);
+  const int w = 64, h = 64;
+  std::vector<float> plane(static_cast<std::size_t>(w * h));
+  for (float& c : plane) c = std::clamp(coefficient(rng), -63.0f, 63.0f);
+  plane[static_cast<std::size_t>(37 * w + 21)] = 90.0f;  // alone in bit-plane 6
+  auto encode = [&](codec::t1::StopRule stop) {
+    return codec::t1::encode_block(codec::t1::FloatBlock{plane.data(), w, w, h, 1.0f}, Orientation::HH, 20, {}, stop);
+  };
+  const EncodedBlock full = encode({});
+  ASSERT_EQ(full.bit_planes, 7);
+  ASSERT_GT(full.passes.size(), 4u);
+  // The top plane's slope with its shortest length, an upper bound of the coder's own estimate (its
+  // byte count is at least that length).
+  const double top_slope =
+      full.passes[0].distortion_decrease / static_cast<double>(std::max<std::size_t>(full.passes[0].length, 1));
+  const double far_below = 256 * top_slope, somewhat_below = 4 * top_slope;
+  ASSERT_GT(full.energy, far_below) << "the block must not be skipped as worth no pass";
+
+  const EncodedBlock stopped = encode(codec::t1::StopRule{far_below, 1});
+  EXPECT_EQ(stopped.passes.size(), 1u);
+  EXPECT_TRUE(stopped.stopped_early);
+  EXPECT_EQ(stopped.passes[0].distortion_decrease, full.passes[0].distortion_decrease);
+
+  const EncodedBlock going_on = encode(codec::t1::StopRule{somewhat_below, 1});
+  EXPECT_GE(going_on.passes.size(), 4u);  // at least the next plane
+}
+
+}  // namespace
