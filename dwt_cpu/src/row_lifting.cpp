@@ -2,6 +2,7 @@
 #include <algorithm>
 
 #include "dwt/error.h"
+#include "kernel_checks.h"
 #include "lifting_simd.h"
 
 namespace dwt_cpu {
@@ -65,10 +66,6 @@ void lift_float(const dwt::Kernel& k, const SplitSignal<float>& s, bool inverse,
     simd::scale(s.low, static_cast<float>(k.low_gain), static_cast<std::size_t>(s.low_size));
     simd::scale(s.high, static_cast<float>(k.high_gain), static_cast<std::size_t>(s.high_size));
   }
-}
-
-void require_reversible(const dwt::Kernel& k) {
-  if (k.id != dwt::KernelId::Reversible53) throw dwt::DwtError("integer planes need the reversible 5/3 kernel");
 }
 
 }  // namespace

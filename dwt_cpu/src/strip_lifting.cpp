@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "dwt/error.h"
+#include "kernel_checks.h"
 #include "lifting_simd.h"
 
 namespace dwt_cpu {
@@ -14,10 +15,6 @@ namespace {
 template <class T>
 int first_target_line(const Strip<T>& s, int target_class) {
   return s.class_of(1) == target_class ? 1 : 2;
-}
-
-void require_reversible(const dwt::Kernel& k) {
-  if (k.id != dwt::KernelId::Reversible53) throw dwt::DwtError("integer planes need the reversible 5/3 kernel");
 }
 
 }  // namespace

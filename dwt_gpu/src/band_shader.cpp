@@ -7,7 +7,7 @@ namespace {
 
 // Rule numbers follow dwt::BandRule (static_asserts below). The second texture is fetched only
 // when the rule reads it, so a pass over one plane needs no second texture.
-constexpr const char* kFragmentShader = R"(#version 330 core
+constexpr const char* kBandFragmentShader = R"(#version 330 core
 uniform sampler2D u_first;
 uniform sampler2D u_second;
 uniform int u_rule;
@@ -37,7 +37,7 @@ static_assert(static_cast<int>(dwt::BandRule::First) == 0 && static_cast<int>(dw
 
 BandShader BandShader::build(const glc::GlApi& gl) {
   BandShader s;
-  s.program = glc::Program::link(gl, kViewportQuadVertexShader, kFragmentShader, "wavelet band operation");
+  s.program = glc::Program::link(gl, kViewportQuadVertexShader, kBandFragmentShader, "wavelet band operation");
   s.first = s.program.uniform("u_first");
   s.second = s.program.uniform("u_second");
   s.rule = s.program.uniform("u_rule");

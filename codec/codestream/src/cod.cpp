@@ -5,6 +5,7 @@
 #include "codec/codestream/error.h"
 #include "codec/codestream/marker_segment.h"
 #include "codec/codestream/markers.h"
+#include "fail.h"
 
 namespace codec::cs {
 namespace {
@@ -13,8 +14,6 @@ namespace {
 constexpr std::uint8_t kUserPrecincts = 0x01;
 constexpr std::uint8_t kSop = 0x02;
 constexpr std::uint8_t kEph = 0x04;
-
-void fail(const char* who, const std::string& what) { throw CodestreamError(std::string(who) + ": " + what); }
 
 // SPcod / SPcoc (Table A.15): levels, xcb - 2, ycb - 2, block style, transform, then one byte per
 // resolution with PPy in the high nibble and PPx in the low one (Table A.21).

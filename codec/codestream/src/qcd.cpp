@@ -5,13 +5,12 @@
 #include "codec/codestream/error.h"
 #include "codec/codestream/marker_segment.h"
 #include "codec/codestream/markers.h"
+#include "fail.h"
 
 namespace codec::cs {
 namespace {
 
 constexpr std::size_t kMaxSubbands = 3 * 32 + 1;  // 32 decomposition levels at most (Table A.15)
-
-void fail(const char* who, const std::string& what) { throw CodestreamError(std::string(who) + ": " + what); }
 
 // Sqcd then SPqcd; the same bytes follow Cqcc in a QCC (Tables A.28 to A.30).
 void write_sqcx_spqcx(ByteWriter& out, const Quantization& q) {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "bit_packers.h"
+#include "block_geometry.h"
 #include "vlc_encoding.h"
 
 namespace codec::ht {
@@ -68,10 +69,6 @@ class SampleGrid {
   std::size_t stride_;
   std::vector<std::uint8_t> exponents_;
 };
-
-// A quad's samples in the order of its significance pattern rho: top-left, bottom-left,
-// top-right, bottom-right (T.814 7.3.1).
-constexpr std::array<std::array<int, 2>, 4> kQuadOffsets{{{0, 0}, {0, 1}, {1, 0}, {1, 1}}};
 
 struct QuadCoding {
   int x0 = 0, y0 = 0;     // top-left sample

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bit_readers.h"
+#include "block_geometry.h"
 #include "codec/ht/cxt_vlc_table.h"
 
 namespace codec::ht {
@@ -41,10 +42,6 @@ const VlcDecodingTable& vlc_decoding_table(QuadRowKind kind) {
   static const VlcDecodingTable initial(QuadRowKind::Initial), other(QuadRowKind::Other);
   return kind == QuadRowKind::Initial ? initial : other;
 }
-
-// A quad's samples in the order of its significance pattern rho (T.814 7.3.1): top-left,
-// bottom-left, top-right, bottom-right.
-constexpr std::array<std::array<int, 2>, 4> kQuadOffsets{{{0, 0}, {0, 1}, {1, 0}, {1, 1}}};
 
 // What the cleanup pass knows of the block so far: significance (known from each quad's rho as soon
 // as its codeword is read, before its magnitudes) and the decoded magnitudes and signs.
@@ -294,12 +291,6 @@ class RefinementDecoder {
   bool vertically_causal_;
   std::vector<std::uint8_t> became_significant_, negative_;
 };
-
-void check_size(int width, int height) {
-  if (width < 1 || height < 1 || width > 1024 || height > 1024 || width * height > 4096)
-    throw std::invalid_argument("HT block: a code-block of " + std::to_string(width) + "x" + std::to_string(height) +
-                                " is outside 1..1024 with at most 4096 samples");
-}
 
 // The SigProp and MagRef passes after the cleanup, and the samples they leave (see the header).
 void refine(const DecodedGrid& grid, const HtCodewords& block, int width, int height, std::span<std::int32_t> out) {

@@ -9,18 +9,13 @@
 #include <vector>
 
 #include "cleanup_encoder.h"
+#include "block_geometry.h"
 #include "block_simd.h"
 #include "refinement_encoder.h"
 #include "codec/t1/dead_zone.h"
 
 namespace codec::ht {
 namespace {
-
-void check_size(int width, int height) {
-  if (width < 1 || height < 1 || width > 1024 || height > 1024 || width * height > 4096)
-    throw std::invalid_argument("HT block: a code-block of " + std::to_string(width) + "x" + std::to_string(height) +
-                                " is outside 1..1024 with at most 4096 samples");
-}
 
 // The coefficient's magnitude in index units: the index plus, for irreversible coding, its fraction.
 double value_of(const HtBlock& b, std::size_t i) {

@@ -2,6 +2,7 @@
 // the Context it was created in and deletes its object in the destructor, so
 // destroy resources before their Context (and with that context current).
 #pragma once
+#include <cstddef>
 
 #include "glcontext/gl_api.h"
 
@@ -166,6 +167,10 @@ class Buffer : public detail::GlObject<&detail::delete_buffer> {
  private:
   using GlObject::GlObject;
 };
+
+// A byte offset into the buffer bound to a vertex attribute or element target, in the pointer form
+// glVertexAttribPointer and glDrawElements take it.
+inline const void* buffer_offset(std::size_t bytes) { return reinterpret_cast<const void*>(bytes); }
 
 class VertexArray : public detail::GlObject<&detail::delete_vertex_array> {
  public:

@@ -15,7 +15,7 @@ namespace performer {
 
 namespace {
 
-constexpr std::size_t kVerticesPerChunk = 1024;
+constexpr std::size_t kWeightVerticesPerChunk = 1024;
 
 // Each capsule's neighbours along the skeleton: the bones ending at its first joint (its parent
 // bone; one, or none at the root) and those starting at its second joint (its child bones).
@@ -122,7 +122,7 @@ void body_ssd_weights(const BodyShape& shape, std::span<const glm::vec3> rest_po
   const std::size_t columns = joint_of.size();
   std::vector<float> dense(n * columns, 0.0f), next(n * columns);
   const auto neighbours = skeleton_neighbours(shape);
-  base::parallel_for(n, kVerticesPerChunk, threads, [&](std::size_t begin, std::size_t end) {
+  base::parallel_for(n, kWeightVerticesPerChunk, threads, [&](std::size_t begin, std::size_t end) {
     seed_range(shape, neighbours, column, columns, rest_positions, 1.0f / scale, params, dense, begin, end);
   });
 
@@ -133,7 +133,7 @@ void body_ssd_weights(const BodyShape& shape, std::span<const glm::vec3> rest_po
   // the gaps body_shape keeps between unrelated limbs.
   const Adjacency adj = vertex_adjacency(n, triangles);
   for (int step = 0; step < params.smoothing_steps; ++step) {
-    base::parallel_for(n, kVerticesPerChunk, threads, [&](std::size_t begin, std::size_t end) {
+    base::parallel_for(n, kWeightVerticesPerChunk, threads, [&](std::size_t begin, std::size_t end) {
       for (std::size_t v = begin; v < end; ++v) {
         const std::uint32_t first = adj.offsets[v], last = adj.offsets[v + 1];
         float* out = next.data() + v * columns;
@@ -155,7 +155,7 @@ void body_ssd_weights(const BodyShape& shape, std::span<const glm::vec3> rest_po
 
   // The strongest max_influences joints, normalised; ties to the lower joint index.
   const auto slots = static_cast<std::size_t>(params.max_influences);
-  base::parallel_for(n, kVerticesPerChunk, threads, [&](std::size_t begin, std::size_t end) {
+  base::parallel_for(n, kWeightVerticesPerChunk, threads, [&](std::size_t begin, std::size_t end) {
     std::vector<std::size_t> order(columns);
     for (std::size_t v = begin; v < end; ++v) {
       const float* row = dense.data() + v * columns;

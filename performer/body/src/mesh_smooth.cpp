@@ -12,7 +12,7 @@ namespace performer {
 
 namespace {
 
-constexpr std::size_t kVerticesPerChunk = 4096;
+constexpr std::size_t kSmoothVerticesPerChunk = 4096;
 
 // Each vertex's distinct edge neighbours, compressed: neighbours of v are
 // list[offset[v] .. offset[v + 1]).
@@ -50,7 +50,7 @@ Neighbours edge_neighbours(std::size_t vertex_count, std::span<const std::uint32
 
 void step(const Neighbours& n, std::span<const glm::vec3> in, std::span<glm::vec3> out, float factor,
           unsigned threads) {
-  base::parallel_for(in.size(), kVerticesPerChunk, threads, [&](std::size_t begin, std::size_t end) {
+  base::parallel_for(in.size(), kSmoothVerticesPerChunk, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       const std::uint32_t first = n.offset[v], last = n.offset[v + 1];
       if (first == last) {

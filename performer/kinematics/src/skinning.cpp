@@ -14,7 +14,7 @@ namespace performer {
 
 namespace {
 
-constexpr std::size_t kVerticesPerChunk = 4096;
+constexpr std::size_t kSkinningVerticesPerChunk = 4096;
 
 // The rows of one vertex range; everything is checked by the caller.
 void skin_range(const SkinningJob& job, std::size_t begin, std::size_t end) {
@@ -92,7 +92,7 @@ void skin(const SkinningJob& job) {
 
 void skin_parallel(const SkinningJob& job, unsigned threads) {
   if (!job.valid()) throw std::invalid_argument("skin: inconsistent job (stream sizes or a joint index out of range)");
-  base::parallel_for(job.in_positions.size(), kVerticesPerChunk, threads,
+  base::parallel_for(job.in_positions.size(), kSkinningVerticesPerChunk, threads,
                      [&job](std::size_t begin, std::size_t end) { skin_range(job, begin, end); });
 }
 

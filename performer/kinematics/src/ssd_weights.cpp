@@ -15,7 +15,7 @@ namespace performer {
 
 namespace {
 
-constexpr std::size_t kVerticesPerChunk = 2048;
+constexpr std::size_t kWeightVerticesPerChunk = 2048;
 
 void weights_range(std::span<const glm::vec3> vertices, std::span<const glm::vec3> joints, const SsdWeightParams& p,
                    std::span<std::uint16_t> out_joints, std::span<float> out_weights, std::size_t begin,
@@ -76,7 +76,7 @@ void ssd_weights(std::span<const glm::vec3> rest_positions, std::span<const glm:
   if (out_joints.size() != slots || out_weights.size() != slots)
     throw std::invalid_argument("ssd_weights: outputs hold " + std::to_string(out_joints.size()) + " and " +
                                 std::to_string(out_weights.size()) + " slots, expected " + std::to_string(slots));
-  base::parallel_for(rest_positions.size(), kVerticesPerChunk, threads, [&](std::size_t begin, std::size_t end) {
+  base::parallel_for(rest_positions.size(), kWeightVerticesPerChunk, threads, [&](std::size_t begin, std::size_t end) {
     weights_range(rest_positions, joint_positions, params, out_joints, out_weights, begin, end);
   });
 }

@@ -23,23 +23,22 @@ struct SkinVertex {
 static_assert(sizeof(SkinVertex) == 24);
 constexpr std::size_t kOutputStride = 6 * sizeof(float);
 
-const void* offset(std::size_t bytes) { return reinterpret_cast<const void*>(bytes); }
-
 // The attributes both vertex arrays share, starting at vertex `first`.
 void point_base_attributes(const glc::GlApi& gl, const glc::Buffer& rest, const glc::Buffer& skin, std::size_t first) {
   gl.glBindBuffer(GL_ARRAY_BUFFER, rest.id());
   gl.glEnableVertexAttribArray(kRestPositionAttribute);
-  gl.glVertexAttribPointer(kRestPositionAttribute, 3, GL_FLOAT, GL_FALSE, kRestStride, offset(first * kRestStride));
+  gl.glVertexAttribPointer(kRestPositionAttribute, 3, GL_FLOAT, GL_FALSE, kRestStride,
+                           glc::buffer_offset(first * kRestStride));
   gl.glEnableVertexAttribArray(kRestNormalAttribute);
   gl.glVertexAttribPointer(kRestNormalAttribute, 3, GL_FLOAT, GL_FALSE, kRestStride,
-                           offset(first * kRestStride + 3 * sizeof(float)));
+                           glc::buffer_offset(first * kRestStride + 3 * sizeof(float)));
   gl.glBindBuffer(GL_ARRAY_BUFFER, skin.id());
   gl.glEnableVertexAttribArray(kJointsAttribute);
   gl.glVertexAttribIPointer(kJointsAttribute, 4, GL_UNSIGNED_SHORT, sizeof(SkinVertex),
-                            offset(first * sizeof(SkinVertex)));
+                            glc::buffer_offset(first * sizeof(SkinVertex)));
   gl.glEnableVertexAttribArray(kWeightsAttribute);
   gl.glVertexAttribPointer(kWeightsAttribute, 4, GL_FLOAT, GL_FALSE, sizeof(SkinVertex),
-                           offset(first * sizeof(SkinVertex) + offsetof(SkinVertex, weights)));
+                           glc::buffer_offset(first * sizeof(SkinVertex) + offsetof(SkinVertex, weights)));
 }
 
 }  // namespace
@@ -191,10 +190,10 @@ void GpuDeformer::deform(std::span<const float> face_weights, std::span<const gl
       const std::size_t target = active[static_cast<std::size_t>(s)];
       const std::size_t first = target * 2 * head_count_ * sizeof(glm::vec3);
       gl.glEnableVertexAttribArray(position_slot);
-      gl.glVertexAttribPointer(position_slot, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), offset(first));
+      gl.glVertexAttribPointer(position_slot, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), glc::buffer_offset(first));
       gl.glEnableVertexAttribArray(normal_slot);
       gl.glVertexAttribPointer(normal_slot, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3),
-                               offset(first + head_count_ * sizeof(glm::vec3)));
+                               glc::buffer_offset(first + head_count_ * sizeof(glm::vec3)));
     }
     gl.glUniform1fv(face_weights_location_, kFaceSlots, weights.data());
     gl.glUniform1i(face_acting_location_, acting > 0 ? 1 : 0);

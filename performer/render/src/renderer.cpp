@@ -23,8 +23,6 @@ constexpr int kHairShells = 16;
 constexpr float kHairStrandsPerMetre = 420.0f;
 constexpr GLuint kHairAttribute = 2;
 
-const void* offset(std::size_t bytes) { return reinterpret_cast<const void*>(bytes); }
-
 // The six faces in GL's order (+X, -X, +Y, -Y, +Z, -Z).
 glc::Texture load_cubemap(const glc::GlApi& gl, const std::filesystem::path& dir) {
   static constexpr std::array<const char*, 6> kFaces = {"posx", "negx", "posy", "negy", "posz", "negz"};
@@ -240,7 +238,7 @@ void Renderer::render(const GpuDeformer& deformed, const Camera& camera, float f
   gl.glEnableVertexAttribArray(0);
   gl.glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
   gl.glEnableVertexAttribArray(1);
-  gl.glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), offset(3 * sizeof(float)));
+  gl.glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), glc::buffer_offset(3 * sizeof(float)));
   gl.glBindBuffer(GL_ARRAY_BUFFER, hair_attributes_.id());
   gl.glEnableVertexAttribArray(kHairAttribute);
   gl.glVertexAttribPointer(kHairAttribute, 4, GL_FLOAT, GL_FALSE, sizeof(glm::vec4), nullptr);
