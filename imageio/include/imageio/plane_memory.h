@@ -35,7 +35,9 @@ struct UninitialisedAllocator : std::allocator<T> {
     if (n * sizeof(T) < kHugePageBytes)
       std::allocator<T>::deallocate(p, n);
     else
-      ::operator delete (p, n * sizeof(T), std::align_val_t{kHugePageBytes});
+      // The unsized form: Clang does not declare sized deallocation unless asked
+      // (-fsized-deallocation), and the fuzz build compiles this header with Clang.
+      ::operator delete (p, std::align_val_t{kHugePageBytes});
   }
   template <class U>
   void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
