@@ -64,7 +64,7 @@ inline std::int64_t become_significant(const BlockView& v, std::uint32_t* w, std
   return 0;
 }
 
-// Calls visit(k, x) for the columns x = x0 + k of a stripe, in chunks of up to 64 (simd::kMaskColumns),
+// Calls visit(k, x, n) for the columns x = x0 + k of a stripe, in chunks of n <= 64 (simd::kMaskColumns),
 // whose bit is set in the chunk's mask(x0, n); visit returns bits to add to the rest of the chunk's
 // mask (a column a pass has just made busy). A quiet column costs no load of its own.
 template <class Mask, class Visit>
@@ -74,7 +74,7 @@ inline void for_each_masked_column(int width, Mask&& mask, Visit&& visit) {
     for (std::uint64_t todo = mask(x0, n); todo != 0;) {
       const int k = std::countr_zero(todo);
       todo &= todo - 1;
-      todo |= visit(k, x0 + k);
+      todo |= visit(k, x0 + k, n);
     }
   }
 }
@@ -92,16 +92,12 @@ double significance_pass_impl(const BlockView v, int plane, const ZeroCodingTabl
     const int rows = std::min(4, v.height - y0);
     std::uint32_t* words = v.columns + (y0 / 4) * v.column_stride;
     const std::ptrdiff_t stripe_top = v.index(0, y0);
-    int chunk = 0;
     // Columns with nothing significant in their window have no candidate; a column that becomes
     // significant here gives its eastern neighbour one, which joins the walk.
     for_each_masked_column(
         v.width,
-        [&](int x0, int n) {
-          chunk = n;
-          return simd::columns_with(words + x0, static_cast<std::size_t>(n), column::kWindow);
-        },
-        [&](int k, int x) {
+        [&](int x0, int n) { return simd::columns_with(words + x0, static_cast<std::size_t>(n), column::kWindow); },
+        [&](int k, int x, int n) {
           std::uint32_t* w = words + x;
           bool any = false;
           for_each_row(v, stripe_top + x, 0, rows, [&](int r, std::ptrdiff_t i) {
@@ -115,7 +111,7 @@ double significance_pass_impl(const BlockView v, int plane, const ZeroCodingTabl
               add_gain<kMeasure>(gain, become_significant<kMeasure>(v, w, i, r, d, s));
             }
           });
-          return any ? next_column_bit(k, chunk) : 0;
+          return any ? next_column_bit(k, n) : 0;
         });
   }
   return gain.value();
@@ -133,7 +129,7 @@ double refinement_pass_impl(const BlockView v, int plane, Symbols s) {
     for_each_masked_column(
         v.width,
         [&](int x0, int n) { return simd::columns_with(words + x0, static_cast<std::size_t>(n), column::kSelfAll); },
-        [&](int, int x) -> std::uint64_t {
+        [&](int, int x, int) -> std::uint64_t {
           std::uint32_t* w = words + x;
           const std::uint32_t word = *w;  // refinement changes no significance: one load does
           // Significant before this plane: significant, and not made so by this plane's first pass.
