@@ -10,9 +10,18 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${FUZZ_SECONDS:-30}"
 dir=build-fuzz
-CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGPUJ2K_FUZZ=ON >/dev/null
-cmake --build "$dir" --parallel "$(nproc)" --target pfm_fuzz pnm_fuzz bvh_fuzz rhubarb_fuzz \
-  codestream_fuzz j2kenc gentestimage
+# The seeds' encoder and image generator: FUZZ_SEED_BIN's (a folder of j2kenc and gentestimage that
+# another build made; the CI job passes its Release build's), else built here. -O1 with line tables
+# only, as the sanitizer suite: the build is most of this script's time.
+seed_bin="${FUZZ_SEED_BIN:-}"
+CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DGPUJ2K_FUZZ=ON >/dev/null
+targets=(pfm_fuzz pnm_fuzz bvh_fuzz rhubarb_fuzz codestream_fuzz)
+if [[ -z "$seed_bin" ]]; then
+  targets+=(j2kenc gentestimage)
+  seed_bin="$dir/bin"
+fi
+cmake --build "$dir" --parallel "$(nproc)" --target "${targets[@]}"
 
 corpus="$dir/corpus"
 rm -rf "$corpus"
@@ -51,8 +60,8 @@ printf '\x01{"metadata":{"duration":0.3},"mouthCues":[{"start":0.00,"end":0.05,"
 
 # Small encodes of our own: lossless and lossy, tiles, precincts, SOP/EPH, every mode switch, layers, JP2.
 seed_image="$dir/corpus/seed.ppm"
-"$dir/bin/gentestimage" --pattern mix --size 24x17 --channels 3 -o "$seed_image"
-enc() { "$dir/bin/j2kenc" -i "$seed_image" -q "$@"; }
+"$seed_bin/gentestimage" --pattern mix --size 24x17 --channels 3 -o "$seed_image"
+enc() { "$seed_bin/j2kenc" -i "$seed_image" -q "$@"; }
 enc -o "$corpus/codestream/lossless.j2k" --lossless --levels 3
 enc -o "$corpus/codestream/tiles.j2k" --lossless --tile 16x8 --tile-origin 1,1 --origin 3,2 --levels 2 --order RPCL
 enc -o "$corpus/codestream/precincts.j2k" --lossless --precincts 8x8 --codeblock 4x4 --sop --eph --order PCRL --levels 2
