@@ -305,31 +305,63 @@ TEST_F(ImageIoTest, PnmRoundTripIsExact) {
   EXPECT_EQ(files_in_dir().size(), 2u);
 }
 
-// write_pnm_planes (a decoder's integer planes) writes the bytes write_pnm writes for the same
-// samples, for 1 and 3 planes of 8 and 16 bits; a sample outside 0..maxval, negative or too large,
-// is an IoError naming it, and leaves no file.
-TEST_F(ImageIoTest, PnmPlanesWriteWhatWritePnmWrites) {
+// PnmRaster (a decoder's rows, in any order) writes the bytes write_pnm writes for the same
+// samples, for 1 and 3 channels of 8, 12 and 16 bits, rows put a channel at a time or (RGB) all
+// three at once, in pieces and out of order; a sample outside 0..maxval, negative or too large, is
+// an IoError naming it, and no file is written; rows never put are zeros; a row outside the
+// raster is an IoError.
+TEST_F(ImageIoTest, PnmRasterWritesWhatWritePnmWrites) {
+  constexpr int kWidth = 37, kHeight = 5;
   for (const int bits : {8, 12, 16})
-    for (const int channels : {1, 3}) {
-      SCOPED_TRACE(std::to_string(bits) + " bits, " + std::to_string(channels) + " planes");
-      const imageio::Image original = pnm_image(37, 5, channels, bits);
-      std::vector<std::vector<std::int32_t>> planes(static_cast<std::size_t>(channels));
-      for (std::size_t i = 0; i < original.pixels.size(); ++i)
-        planes[i % static_cast<std::size_t>(channels)].push_back(static_cast<std::int32_t>(original.pixels[i]));
-      const std::vector<std::span<const std::int32_t>> spans(planes.begin(), planes.end());
-      imageio::write_pnm(path("whole.pnm"), original);
-      imageio::write_pnm_planes(path("planes.pnm"), 37, 5, bits, spans);
-      EXPECT_EQ(read_bytes(path("planes.pnm")), read_bytes(path("whole.pnm")));
+    for (const int channels : {1, 3})
+      for (const bool rgb_rows : {false, true}) {
+        if (rgb_rows && channels != 3) continue;
+        SCOPED_TRACE(std::to_string(bits) + " bits, " + std::to_string(channels) + " channels" +
+                     (rgb_rows ? ", RGB rows" : ""));
+        const imageio::Image original = pnm_image(kWidth, kHeight, channels, bits);
+        std::vector<std::vector<std::int32_t>> planes(static_cast<std::size_t>(channels));
+        for (std::size_t i = 0; i < original.pixels.size(); ++i)
+          planes[i % static_cast<std::size_t>(channels)].push_back(static_cast<std::int32_t>(original.pixels[i]));
+        // Row y, pixels [x, x + n) of every channel.
+        auto put = [&](imageio::PnmRaster& raster, std::size_t x, std::size_t y, std::size_t n) {
+          auto piece = [&](std::size_t c) {
+            return std::span<const std::int32_t>(planes[c].data() + y * kWidth + x, n);
+          };
+          if (rgb_rows) return raster.put_rgb_row(x, y, piece(0), piece(1), piece(2));
+          for (std::size_t c = planes.size(); c-- > 0;) raster.put_row(static_cast<int>(c), x, y, piece(c));
+        };
+        imageio::write_pnm(path("whole.pnm"), original);
+        imageio::PnmRaster raster(path("raster.pnm"), kWidth, kHeight, channels, bits);
+        for (const std::size_t y : {3, 0, 4, 1, 2}) {
+          put(raster, 20, y, kWidth - 20);
+          put(raster, 0, y, 20);
+        }
+        raster.write();
+        EXPECT_EQ(read_bytes(path("raster.pnm")), read_bytes(path("whole.pnm")));
 
-      for (const std::int32_t bad : {-1, (1 << bits)}) {
-        planes.back()[100] = bad;
-        const std::string file = path("bad.pnm");
-        const std::string message = expect_io_error(file, [&] { imageio::write_pnm_planes(file, 37, 5, bits, spans); });
-        EXPECT_NE(message.find("sample 100 has value " + std::to_string(bad)), std::string::npos) << message;
-        EXPECT_FALSE(std::filesystem::exists(file));
-        planes.back()[100] = 0;
+        for (const std::int32_t bad : {-1, (1 << bits)}) {
+          planes.back()[2 * kWidth + 26] = bad;
+          const std::string file = path("bad.pnm");
+          const std::string message = expect_io_error(file, [&] {
+            imageio::PnmRaster bad_raster(file, kWidth, kHeight, channels, bits);
+            for (std::size_t y = 0; y < kHeight; ++y) put(bad_raster, 0, y, kWidth);
+            bad_raster.write();
+          });
+          EXPECT_NE(message.find("sample (26, 2) has value " + std::to_string(bad)), std::string::npos) << message;
+          EXPECT_FALSE(std::filesystem::exists(file));
+          planes.back()[2 * kWidth + 26] = 0;
+        }
       }
-    }
+
+  imageio::PnmRaster unput(path("unput.pgm"), 3, 2, 1, 8);
+  const std::vector<std::int32_t> row{7, 8, 9};
+  unput.put_row(0, 0, 1, row);
+  EXPECT_THROW(unput.put_row(0, 1, 1, row), imageio::IoError);  // pixels 1..3 of a 3-pixel row
+  EXPECT_THROW(unput.put_row(0, 0, 2, row), imageio::IoError);  // row 2 of 2
+  EXPECT_THROW(unput.put_row(1, 0, 0, row), imageio::IoError);  // channel 1 of a grey image
+  unput.write();
+  EXPECT_EQ(bytes_of(read_bytes(path("unput.pgm"))),
+            pnm_header("P5", 3, 2, 255) + std::string("\0\0\0\x07\x08\x09", 6));
 }
 
 TEST_F(ImageIoTest, Pnm16BitSamplesAreBigEndian) {

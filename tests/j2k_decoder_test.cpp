@@ -654,6 +654,103 @@ TEST(J2kDecoderWindow, ComponentSelectionsEqualTheWholeDecodesComponents) {
   EXPECT_THROW((void)codec::decode(encode(img, lossless()), o), codec::DecodeError);
 }
 
+// ---- decode_to: the samples to the caller's sink, row by row ----
+
+// A sink that rebuilds the image, counting how often each sample arrives.
+class RecordingSink : public codec::SampleSink {
+ public:
+  void begin(const codec::DecodedImage& geometry) override {
+    ++begins;
+    image = geometry;
+    counts.clear();
+    for (auto& c : image.components) {
+      EXPECT_TRUE(c.samples.empty());
+      const std::size_t n = static_cast<std::size_t>(c.width) * static_cast<std::size_t>(c.height);
+      c.samples.assign(n, -12345);
+      counts.emplace_back(n, 0);
+    }
+  }
+  void put_row(std::size_t component, std::size_t x, std::size_t y, std::span<const std::int32_t> samples) override {
+    ASSERT_EQ(begins, 1);
+    ASSERT_LT(component, image.components.size());
+    codec::DecodedComponent& c = image.components[component];
+    ASSERT_LT(y, static_cast<std::size_t>(c.height));
+    ASSERT_LE(x + samples.size(), static_cast<std::size_t>(c.width));
+    const std::size_t at = y * static_cast<std::size_t>(c.width) + x;
+    std::copy(samples.begin(), samples.end(), c.samples.begin() + static_cast<std::ptrdiff_t>(at));
+    for (std::size_t i = 0; i < samples.size(); ++i) ++counts[component][at + i];
+  }
+  void expect_each_sample_once(const std::string& what) const {
+    for (std::size_t c = 0; c < counts.size(); ++c) {
+      const auto wrong = std::count_if(counts[c].begin(), counts[c].end(), [](int n) { return n != 1; });
+      EXPECT_EQ(wrong, 0) << what << ": samples of component " << c << " not delivered exactly once";
+    }
+  }
+
+  int begins = 0;
+  codec::DecodedImage image;
+  std::vector<std::vector<int>> counts;
+};
+
+// decode_to hands the sink exactly the samples decode returns, each once, and its geometry first:
+// tiles with an odd origin, a region and reduce (rows straight from the tiles), a stream cut short
+// (its missing tiles as zeros), a component selection (the whole image first, then handed over),
+// and two threads; a sink's exception ends the decode.
+TEST(J2kDecoderSink, DeliversEverySampleDecodeGives) {
+  const auto img = image(Pattern::Mix, 131, 77, 3, 8);
+  auto p = lossless();
+  test_support::apply_order(p, 2, true);  // RPCL, odd image origin, 8x8 code-blocks, precincts
+  p.tile_width = 48;
+  p.tile_height = 40;
+  const auto tiled = encode(img, p);
+  const auto lossy_stream = encode(img, lossy());
+  struct Case {
+    std::string name;
+    std::vector<std::uint8_t> stream;
+    codec::DecodeOptions options;
+  };
+  std::vector<Case> cases;
+  auto o = options();
+  o.threads = 2;
+  cases.push_back({"tiles", tiled, o});
+  cases.push_back({"9/7", lossy_stream, o});
+  cases.push_back({"tiles cut short", std::vector<std::uint8_t>(tiled.begin(), tiled.begin() + tiled.size() / 2), o});
+  auto windowed = o;
+  windowed.region = codec::DecodeRegion{30, 11, 101, 70};
+  windowed.reduce = 1;
+  cases.push_back({"region, reduce 1", tiled, windowed});
+  auto selection = o;
+  selection.components = {2, 0};
+  cases.push_back({"components 2, 0", lossy_stream, selection});
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const codec::DecodedImage want = codec::decode(c.stream, c.options);
+    RecordingSink sink;
+    const codec::DecodedImage got = codec::decode_to(c.stream, sink, c.options);
+    EXPECT_EQ(sink.begins, 1);
+    sink.expect_each_sample_once(c.name);
+    expect_same_samples(sink.image, want, c.name);
+    EXPECT_EQ(got.warnings, want.warnings);
+    ASSERT_EQ(got.components.size(), want.components.size());
+    for (std::size_t k = 0; k < got.components.size(); ++k) {
+      EXPECT_TRUE(got.components[k].samples.empty());
+      EXPECT_EQ(got.components[k].width, want.components[k].width);
+      EXPECT_EQ(got.components[k].height, want.components[k].height);
+    }
+  }
+  const auto cut_warnings = codec::decode(cases[2].stream, o).warnings;
+  EXPECT_TRUE(std::any_of(cut_warnings.begin(), cut_warnings.end(), [](const std::string& w) {
+    return w.find("missing from the stream") != std::string::npos;
+  })) << "the cut stream lost no whole tile";
+
+  struct Refusing : codec::SampleSink {
+    void put_row(std::size_t, std::size_t, std::size_t, std::span<const std::int32_t>) override {
+      throw std::runtime_error("disk full");
+    }
+  } refusing;
+  EXPECT_THROW((void)codec::decode_to(tiled, refusing, o), std::runtime_error);
+}
+
 // ---- The T.803 conformance streams (../shared/conformance) ----
 
 // Class 1 limits per component: the largest peak error and mean squared error T.803 allows

@@ -133,39 +133,61 @@ std::string describe(const codec::DecodedComponent& c) {
          (c.is_signed ? "signed" : "unsigned");
 }
 
-void write_samples(const codec::DecodedImage& image, const OutputView& out, const detail::BufferLayout& layout) {
-  auto* base = static_cast<std::uint8_t*>(out.data);
-  for (std::size_t c = 0; c < image.components.size(); ++c) {
-    const codec::DecodedComponent& comp = image.components[c];
-    for (int y = 0; y < comp.height; ++y) {
-      std::uint8_t* row = base + c * layout.component_step + static_cast<std::size_t>(y) * layout.row_stride;
-      const std::int32_t* src =
-          comp.samples.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(comp.width);
-      for (int x = 0; x < comp.width; ++x) {
-        std::uint8_t* d = row + static_cast<std::size_t>(x) * layout.pixel_step;
-        const std::int32_t v = src[x];
-        switch (out.type) {
-          case SampleType::UInt8:
-            *d = static_cast<std::uint8_t>(v);
-            break;
-          case SampleType::UInt16: {
-            const auto u = static_cast<std::uint16_t>(v);
-            std::memcpy(d, &u, 2);
-            break;
-          }
-          case SampleType::Int16: {
-            const auto i = static_cast<std::int16_t>(v);
-            std::memcpy(d, &i, 2);
-            break;
-          }
-          case SampleType::Int32:
-            std::memcpy(d, &v, 4);
-            break;
-        }
-      }
+// decode_into's rows, straight into the caller's buffer as the decoder finishes them (the image
+// is never held as int32 planes): the image checked against the view first, then each sample
+// converted to the view's type.
+class BufferSink : public codec::SampleSink {
+ public:
+  BufferSink(const OutputView& out, const detail::BufferLayout& layout) : out_(out), layout_(layout) {}
+
+  void begin(const codec::DecodedImage& image) override {
+    if (static_cast<int>(image.components.size()) != out_.components)
+      throw Error("the image has " + std::to_string(image.components.size()) + " components, the output buffer " +
+                  std::to_string(out_.components));
+    for (std::size_t c = 0; c < image.components.size(); ++c) {
+      const codec::DecodedComponent& comp = image.components[c];
+      if (comp.width != out_.width || comp.height != out_.height)
+        throw Error("component " + std::to_string(c) + " is " + describe(comp) + ", the output buffer " +
+                    std::to_string(out_.width) + "x" + std::to_string(out_.height));
+      if (!fits(out_.type, comp))
+        throw Error("component " + std::to_string(c) + " is " + describe(comp) + ": its samples do not fit " +
+                    type_name(out_.type));
     }
   }
-}
+
+  void put_row(std::size_t component, std::size_t x, std::size_t y, std::span<const std::int32_t> samples) override {
+    std::uint8_t* d = static_cast<std::uint8_t*>(out_.data) + component * layout_.component_step +
+                      y * layout_.row_stride + x * layout_.pixel_step;
+    switch (out_.type) {
+      case SampleType::UInt8:
+        store<std::uint8_t>(samples, d);
+        break;
+      case SampleType::UInt16:
+        store<std::uint16_t>(samples, d);
+        break;
+      case SampleType::Int16:
+        store<std::int16_t>(samples, d);
+        break;
+      case SampleType::Int32:
+        store<std::int32_t>(samples, d);
+        break;
+    }
+  }
+
+ private:
+  // The samples as T, one pixel step apart (begin checked that they fit T).
+  template <class T>
+  void store(std::span<const std::int32_t> samples, std::uint8_t* d) const {
+    for (const std::int32_t v : samples) {
+      const auto t = static_cast<T>(v);
+      std::memcpy(d, &t, sizeof t);
+      d += layout_.pixel_step;
+    }
+  }
+
+  const OutputView& out_;
+  const detail::BufferLayout& layout_;
+};
 
 std::vector<std::uint8_t> read_whole_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -210,20 +232,11 @@ std::vector<std::string> decode_into(const void* data, std::size_t size, const O
     const detail::BufferLayout layout = detail::check_buffer(
         {out.width, out.height, out.components, out.type, out.layout, out.row_stride, out.plane_stride, out.size_bytes},
         "output buffer");
-    codec::DecodedImage image = run_decode(bytes_of(data, size), options, report);
-    if (static_cast<int>(image.components.size()) != out.components)
-      throw Error("the image has " + std::to_string(image.components.size()) + " components, the output buffer " +
-                  std::to_string(out.components));
-    for (std::size_t c = 0; c < image.components.size(); ++c) {
-      const codec::DecodedComponent& comp = image.components[c];
-      if (comp.width != out.width || comp.height != out.height)
-        throw Error("component " + std::to_string(c) + " is " + describe(comp) + ", the output buffer " +
-                    std::to_string(out.width) + "x" + std::to_string(out.height));
-      if (!fits(out.type, comp))
-        throw Error("component " + std::to_string(c) + " is " + describe(comp) + ": its samples do not fit " +
-                    type_name(out.type));
-    }
-    write_samples(image, out, layout);
+    BufferSink sink(out, layout);
+    codec::DecodeReport codec_report;
+    codec::DecodedImage image =
+        codec::decode_to(bytes_of(data, size), sink, to_codec(options), report ? &codec_report : nullptr);
+    if (report) fill_report(codec_report, 0, *report);
     return std::move(image.warnings);
   });
 }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "atomic_file.h"
@@ -36,17 +38,6 @@ std::vector<std::uint8_t> encode_pnm(const Image& image) {
   return out;
 }
 
-// The IoError for the first sample of pixels [first, first + n) outside 0..maxval.
-[[noreturn]] void throw_first_outside(const std::string& path, std::span<const std::span<const std::int32_t>> planes,
-                                      std::size_t first, std::size_t n, std::uint32_t maxval) {
-  for (std::size_t i = first; i < first + n; ++i)
-    for (const auto& plane : planes)
-      if (static_cast<std::uint32_t>(plane[i]) > maxval)
-        throw IoError(path, "sample " + std::to_string(i) + " has value " + std::to_string(plane[i]) + ", outside 0.." +
-                                std::to_string(maxval));
-  throw IoError(path, "a sample is outside 0.." + std::to_string(maxval));
-}
-
 }  // namespace
 
 Image read_pnm(const std::string& path) {
@@ -74,49 +65,85 @@ void write_pnm(const std::string& path, const Image& image) {
                            [&](const std::string& temporary) { detail::write_whole_file(path, temporary, bytes); });
 }
 
-void write_pnm_planes(const std::string& path, int width, int height, int bits,
-                      std::span<const std::span<const std::int32_t>> planes) {
-  if (planes.size() != 1 && planes.size() != 3)
-    throw IoError(path, "PGM/PPM store 1 or 3 channels, the image has " + std::to_string(planes.size()));
-  if (width <= 0 || height <= 0) throw IoError(path, "invalid image dimensions");
-  if (bits < 1 || bits > 16) throw IoError(path, "PGM/PPM store 1 to 16 bits per sample, not " + std::to_string(bits));
-  const std::size_t samples = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-  for (const auto& plane : planes)
-    if (plane.size() != samples) throw IoError(path, "a plane does not hold width x height samples");
-  const auto maxval = static_cast<std::uint32_t>((1u << bits) - 1);
-  const bool wide = maxval > 255;
-  const std::size_t channels = planes.size(), pixel_bytes = channels * (wide ? 2 : 1);
-  const std::string header = pnm_header(width, height, static_cast<int>(channels), maxval);
+PnmRaster::PnmRaster(std::string path, int width, int height, int channels, int bits) : path_(std::move(path)) {
+  if (channels != 1 && channels != 3)
+    throw IoError(path_, "PGM/PPM store 1 or 3 channels, the image has " + std::to_string(channels));
+  if (width <= 0 || height <= 0) throw IoError(path_, "invalid image dimensions");
+  if (bits < 1 || bits > 16) throw IoError(path_, "PGM/PPM store 1 to 16 bits per sample, not " + std::to_string(bits));
+  width_ = static_cast<std::size_t>(width);
+  height_ = static_cast<std::size_t>(height);
+  channels_ = static_cast<std::size_t>(channels);
+  maxval_ = (1u << bits) - 1;
+  sample_bytes_ = maxval_ > 255 ? 2 : 1;
+  const std::string header = pnm_header(width, height, channels, maxval_);
+  header_bytes_ = header.size();
+  // Zeros where no row is put (a tile missing from a stream); the raster's pages are touched here
+  // and written over once.
+  bytes_.resize(header_bytes_ + width_ * height_ * channels_ * sample_bytes_);
+  std::copy(header.begin(), header.end(), bytes_.begin());
+}
 
-  // The raster is made and written a chunk at a time, each interleaved while the last is in the
-  // page cache: no whole-image buffer to fault in. A sample out of range ends the write, and the
-  // atomic write then leaves no file.
-  constexpr std::size_t kChunkPixels = std::size_t{1} << 16;
-  std::vector<std::uint8_t, UninitialisedAllocator<std::uint8_t>> chunk(kChunkPixels * pixel_bytes);
-  std::size_t next = 0;  // the first pixel of the next chunk
-  bool header_written = false;
-  auto next_chunk = [&]() -> std::span<const std::uint8_t> {
-    if (!header_written) {
-      header_written = true;
-      return {reinterpret_cast<const std::uint8_t*>(header.data()), header.size()};
+std::uint8_t* PnmRaster::pixels_at(std::size_t x, std::size_t y, std::size_t n) {
+  if (y >= height_ || x > width_ || n > width_ - x)
+    throw IoError(path_, "pixels [" + std::to_string(x) + ", " + std::to_string(x + n) + ") of row " +
+                             std::to_string(y) + " are outside the " + std::to_string(width_) + "x" +
+                             std::to_string(height_) + " image");
+  return bytes_.data() + header_bytes_ + (y * width_ + x) * channels_ * sample_bytes_;
+}
+
+void PnmRaster::throw_outside(std::span<const std::int32_t> samples, std::size_t x, std::size_t y) const {
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    if (static_cast<std::uint32_t>(samples[i]) > maxval_)
+      throw IoError(path_, "sample (" + std::to_string(x + i) + ", " + std::to_string(y) + ") has value " +
+                               std::to_string(samples[i]) + ", outside 0.." + std::to_string(maxval_));
+  throw IoError(path_, "a sample is outside 0.." + std::to_string(maxval_));
+}
+
+void PnmRaster::put_row(int channel, std::size_t x, std::size_t y, std::span<const std::int32_t> samples) {
+  if (channel < 0 || static_cast<std::size_t>(channel) >= channels_)
+    throw IoError(path_,
+                  "channel " + std::to_string(channel) + " of a " + std::to_string(channels_) + "-channel image");
+  std::uint8_t* out = pixels_at(x, y, samples.size());
+  const std::size_t n = samples.size();
+  std::uint32_t largest = 0;
+  if (channels_ == 1) {
+    largest = sample_bytes_ == 2 ? detail::interleave_grey16(samples.data(), out, n)
+                                 : detail::interleave_grey8(samples.data(), out, n);
+  } else {
+    // One channel of three: every third sample, as the writer's bytes.
+    out += static_cast<std::size_t>(channel) * sample_bytes_;
+    const std::size_t stride = channels_ * sample_bytes_;
+    for (std::size_t i = 0; i < n; ++i, out += stride) {
+      const auto v = static_cast<std::uint32_t>(samples[i]);
+      largest = std::max(largest, v);
+      if (sample_bytes_ == 2) {
+        out[0] = static_cast<std::uint8_t>(v >> 8);  // big-endian
+        out[1] = static_cast<std::uint8_t>(v);
+      } else {
+        out[0] = static_cast<std::uint8_t>(v);
+      }
     }
-    const std::size_t first = next, n = std::min(kChunkPixels, samples - next);
-    if (n == 0) return {};
-    next += n;
-    const std::int32_t* p0 = planes[0].data() + first;
-    std::uint32_t largest = 0;
-    if (channels == 3) {
-      const std::int32_t *p1 = planes[1].data() + first, *p2 = planes[2].data() + first;
-      largest = wide ? detail::interleave_rgb16(p0, p1, p2, chunk.data(), n)
-                     : detail::interleave_rgb8(p0, p1, p2, chunk.data(), n);
-    } else {
-      largest = wide ? detail::interleave_grey16(p0, chunk.data(), n) : detail::interleave_grey8(p0, chunk.data(), n);
-    }
-    if (largest > maxval) throw_first_outside(path, planes, first, n, maxval);
-    return {chunk.data(), n * pixel_bytes};
-  };
-  detail::write_atomically(
-      path, [&](const std::string& temporary) { detail::write_file_in_chunks(path, temporary, next_chunk); });
+  }
+  if (largest > maxval_) throw_outside(samples, x, y);
+}
+
+void PnmRaster::put_rgb_row(std::size_t x, std::size_t y, std::span<const std::int32_t> r,
+                            std::span<const std::int32_t> g, std::span<const std::int32_t> b) {
+  if (channels_ != 3) throw IoError(path_, "RGB rows put into a grey image");
+  if (g.size() != r.size() || b.size() != r.size()) throw IoError(path_, "RGB rows of different lengths");
+  std::uint8_t* out = pixels_at(x, y, r.size());
+  const std::uint32_t largest = sample_bytes_ == 2
+                                    ? detail::interleave_rgb16(r.data(), g.data(), b.data(), out, r.size())
+                                    : detail::interleave_rgb8(r.data(), g.data(), b.data(), out, r.size());
+  if (largest > maxval_)
+    for (const auto channel : {r, g, b})
+      for (const std::int32_t v : channel)
+        if (static_cast<std::uint32_t>(v) > maxval_) throw_outside(channel, x, y);
+}
+
+void PnmRaster::write() const {
+  detail::write_atomically(path_,
+                           [&](const std::string& temporary) { detail::write_whole_file(path_, temporary, bytes_); });
 }
 
 }  // namespace imageio

@@ -2,7 +2,7 @@
 #include <cstddef>
 #include <cstdint>
 
-// PNM rasters from integer planes (write_pnm_planes): n pixels of 1 or 3 planes, interleaved into
+// PNM rasters from integer rows (PnmRaster): n pixels of 1 or 3 planes, interleaved into
 // bytes, 1 per sample (maxval up to 255) or 2 big-endian ones. Each returns the largest sample read
 // as unsigned (a negative one is larger than any maxval), so that the caller checks the range once
 // per chunk instead of once per sample; a sample outside 0..255 (0..65535) is written truncated,

@@ -207,7 +207,45 @@ DecodedImage read_header(std::span<const std::uint8_t> bytes, const DecodeOption
   return image;
 }
 
-DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& options, DecodeReport* report_out) {
+namespace {
+
+// A decoded image to the sink: its geometry, then every row of every component, on the pool; the
+// samples are then released, as decode_to promises.
+void hand_over(DecodedImage& image, SampleSink& sink, base::ThreadPool& pool) {
+  DecodedImage geometry = image;
+  for (DecodedComponent& c : geometry.components) c.samples = {};
+  sink.begin(geometry);
+  for (std::size_t c = 0; c < image.components.size(); ++c) {
+    DecodedComponent& comp = image.components[c];
+    const auto width = static_cast<std::size_t>(comp.width);
+    if (comp.samples.empty()) continue;
+    pool.parallel_for(static_cast<std::size_t>(comp.height), [&](std::size_t y) {
+      sink.put_row(c, 0, y, std::span<const std::int32_t>(comp.samples.data() + y * width, width));
+    });
+    comp.samples = {};
+  }
+}
+
+// The samples of a tile missing from the stream (its part `area` of the window, on the reference
+// grid) to the sink as zeros, so that a sink gets every sample once, as the image's own
+// components hold zeros there.
+void put_zero_rows(const Rect& area, const DecodedImage& image, int reduce, SampleSink& sink) {
+  for (std::size_t c = 0; c < image.components.size(); ++c) {
+    const DecodedComponent& comp = image.components[c];
+    const Rect a = tile_component_rect(area, comp.dx, comp.dy);
+    const Rect rows =
+        Rect{reduced(a.x0, reduce), reduced(a.y0, reduce), reduced(a.x1, reduce), reduced(a.y1, reduce)}.intersect(
+            Rect{comp.x0, comp.y0, std::int64_t{comp.x0} + comp.width, std::int64_t{comp.y0} + comp.height});
+    if (rows.empty()) continue;
+    const std::vector<std::int32_t> zeros(static_cast<std::size_t>(rows.width()), 0);
+    for (std::int64_t y = rows.y0; y < rows.y1; ++y)
+      sink.put_row(c, static_cast<std::size_t>(rows.x0 - comp.x0), static_cast<std::size_t>(y - comp.y0), zeros);
+  }
+}
+
+// decode, and decode_to's sink when `sink` is not null.
+DecodedImage decode_with(std::span<const std::uint8_t> bytes, const DecodeOptions& options, DecodeReport* report_out,
+                         SampleSink* sink) {
   DecodeReport report;
   DecodeStageTimes& times = report.times;
   const auto parse_start = Clock::now();
@@ -221,8 +259,14 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
   const auto setup_start = Clock::now();
   const Rect window = decoded_area(cs.siz, options);
   const std::vector<bool> selected = selected_components(cs.siz, options);
-  DecodedImage image = allocate_image(cs.siz, window, selected, options);
+  // A sink takes the tiles' rows as they are made, unless the output needs the whole image first.
+  const bool rows_to_sink = sink && options.components.empty() && !(jp2 && rewrites_channels(*jp2));
+  DecodedImage image = allocate_image(cs.siz, window, selected, options, !rows_to_sink);
   image.warnings = cs.warnings;
+  if (rows_to_sink) {
+    if (jp2) image.jp2_colour_space = jp2->colour_space;
+    sink->begin(image);
+  }
   double image_bytes = 0;
   for (const DecodedComponent& c : image.components) image_bytes += static_cast<double>(c.samples.size()) * 4;
   base::ThreadPool pool(options.threads);
@@ -242,6 +286,7 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
   setup.window = window;
   setup.selected = selected;
   setup.times = &times;
+  setup.sink = rows_to_sink ? sink : nullptr;
   times.setup = ms_since(setup_start) - times.gl_context - times.shader_compile;
 
   // Tiles the window misses are neither decoded nor missed.
@@ -254,7 +299,12 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
     seen[static_cast<std::size_t>(tile.index)] = true;
   }
   int missing = 0;
-  for (bool s : seen) missing += s ? 0 : 1;
+  for (std::size_t t = 0; t < seen.size(); ++t) {
+    if (seen[t]) continue;
+    ++missing;
+    if (rows_to_sink)
+      put_zero_rows(cs.siz.grid.tile_rect(static_cast<int>(t)).intersect(window), image, options.reduce, *sink);
+  }
   if (missing > 0)
     image.warnings.push_back(std::to_string(missing) + " of " + std::to_string(seen.size()) +
                              " tile(s) missing from the stream; their samples are 0");
@@ -268,6 +318,7 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
   } else if (jp2) {
     dec::apply_jp2_channels(*jp2, options.jp2_sycc_to_srgb, image);
   }
+  if (sink && !rows_to_sink) hand_over(image, *sink, pool);
   times.component_transform += ms_since(channels_start);
   if (dwt.backend && dwt.backend->device_timings()) {
     const auto teardown_start = Clock::now();
@@ -278,13 +329,34 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
   return image;
 }
 
-DecodedImage decode_file(const std::string& path, const DecodeOptions& options, DecodeReport* report) {
+DecodedImage decode_file_with(const std::string& path, const DecodeOptions& options, DecodeReport* report,
+                              SampleSink* sink) {
   const auto read_start = Clock::now();
   const std::vector<std::uint8_t> bytes = file_bytes(path, options.max_memory);
   const double read_ms = ms_since(read_start);
-  DecodedImage image = decode(bytes, options, report);
+  DecodedImage image = decode_with(bytes, options, report, sink);
   if (report) report->times.read = read_ms;
   return image;
+}
+
+}  // namespace
+
+DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& options, DecodeReport* report) {
+  return decode_with(bytes, options, report, nullptr);
+}
+
+DecodedImage decode_file(const std::string& path, const DecodeOptions& options, DecodeReport* report) {
+  return decode_file_with(path, options, report, nullptr);
+}
+
+DecodedImage decode_to(std::span<const std::uint8_t> bytes, SampleSink& sink, const DecodeOptions& options,
+                       DecodeReport* report) {
+  return decode_with(bytes, options, report, &sink);
+}
+
+DecodedImage decode_file_to(const std::string& path, SampleSink& sink, const DecodeOptions& options,
+                            DecodeReport* report) {
+  return decode_file_with(path, options, report, &sink);
 }
 
 }  // namespace codec

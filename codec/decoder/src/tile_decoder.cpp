@@ -303,52 +303,96 @@ const T* plane_at(const std::vector<T, Allocator>& samples, const Plane& plane, 
   return samples.data() + static_cast<std::size_t>(y - plane.rect.y0) * static_cast<std::size_t>(plane.width()) +
          static_cast<std::size_t>(x - plane.rect.x0);
 }
-std::int32_t* output_at(DecodedComponent& out, std::int64_t x, std::int64_t y) {
-  return out.samples.data() + static_cast<std::size_t>(y - out.y0) * static_cast<std::size_t>(out.width) +
-         static_cast<std::size_t>(x - out.x0);
-}
 Rect output_rect(const DecodedComponent& out) {
   return Rect{out.x0, out.y0, std::int64_t{out.x0} + out.width, std::int64_t{out.y0} + out.height};
 }
 
+// Where a tile's finished rows go: straight into the output components' samples, or through a
+// row of scratch (one per thread and component, reused) to the caller's sink.
+class RowOutput {
+ public:
+  RowOutput(DecodedImage& image, SampleSink* sink) : image_(image), sink_(sink) {}
+
+  // Where output component c's samples [x, x + n) of row y (its grid's coordinates) are to be made.
+  std::int32_t* row(std::size_t c, std::int64_t x, std::int64_t y, std::size_t n) const {
+    if (sink_) {
+      thread_local std::array<std::vector<std::int32_t>, 3> scratch;
+      std::vector<std::int32_t>& s = scratch[std::min<std::size_t>(c, 2)];
+      if (s.size() < n) s.resize(n);
+      return s.data();
+    }
+    DecodedComponent& out = image_.components[c];
+    return out.samples.data() + static_cast<std::size_t>(y - out.y0) * static_cast<std::size_t>(out.width) +
+           static_cast<std::size_t>(x - out.x0);
+  }
+  // The row made where row() said is finished.
+  void done(std::size_t c, std::int64_t x, std::int64_t y, const std::int32_t* samples, std::size_t n) const {
+    if (!sink_) return;
+    const DecodedComponent& out = image_.components[c];
+    sink_->put_row(c, static_cast<std::size_t>(x - out.x0), static_cast<std::size_t>(y - out.y0), {samples, n});
+  }
+  // Components 0..2's rows, all made and all output, with the same geometry.
+  void done012(std::int64_t x, std::int64_t y, const OutputRows& rows, std::size_t n) const {
+    if (!sink_) return;
+    const DecodedComponent& out = image_.components[0];
+    sink_->put_rows012(static_cast<std::size_t>(x - out.x0), static_cast<std::size_t>(y - out.y0), {rows[0], n},
+                       {rows[1], n}, {rows[2], n});
+  }
+
+ private:
+  DecodedImage& image_;
+  SampleSink* sink_;
+};
+
 // G.1.2 on one plane without a component transform: level shift, rounding (9/7) and clamping into
-// the part of the output component the plane covers.
-void store(const Plane& plane, const ComponentSize& size, DecodedComponent& out, base::ThreadPool& pool) {
+// the part of output component c the plane covers.
+void store(const Plane& plane, const ComponentSize& size, std::size_t c, const RowOutput& output,
+           const DecodedComponent& out, base::ThreadPool& pool) {
   const SampleRange range = sample_range(size.precision, size.is_signed);
   const Rect area = plane.rect.intersect(output_rect(out));
   if (area.empty()) return;
   const auto n = static_cast<std::size_t>(area.width());
   for_rows(area.y0, area.y1, pool, [&](std::int64_t y) {
+    std::int32_t* row = output.row(c, area.x0, y, n);
     if (plane.reversible)
-      ints_to_samples(plane_at(plane.ints, plane, area.x0, y), range, output_at(out, area.x0, y), n);
+      ints_to_samples(plane_at(plane.ints, plane, area.x0, y), range, row, n);
     else
-      floats_to_samples(plane_at(plane.floats, plane, area.x0, y), range, output_at(out, area.x0, y), n);
+      floats_to_samples(plane_at(plane.floats, plane, area.x0, y), range, row, n);
+    output.done(c, area.x0, y, row, n);
   });
 }
 
 // G.2 and G.1.2 on components 0..2 in one pass: the inverse RCT or ICT of the three planes, then
 // each output component's level shift, rounding and clamping. `outputs` holds the selected ones
 // (null: decoded for the transform only), all covering the same part of the planes.
-void store_transformed(const std::array<const Plane*, 3>& planes, const std::array<DecodedComponent*, 3>& outputs,
-                       const OutputRanges& ranges, const Rect& area, base::ThreadPool& pool) {
+void store_transformed(const std::array<const Plane*, 3>& planes, const std::array<const DecodedComponent*, 3>& outputs,
+                       const RowOutput& output, const OutputRanges& ranges, const Rect& area, base::ThreadPool& pool) {
   const Plane &p0 = *planes[0], &p1 = *planes[1], &p2 = *planes[2];
   const auto n = static_cast<std::size_t>(area.width());
+  const bool all_three = outputs[0] && outputs[1] && outputs[2];
   for_rows(area.y0, area.y1, pool, [&](std::int64_t y) {
     OutputRows rows{};
-    for (std::size_t c = 0; c < 3; ++c) rows[c] = outputs[c] ? output_at(*outputs[c], area.x0, y) : nullptr;
+    for (std::size_t c = 0; c < 3; ++c) rows[c] = outputs[c] ? output.row(c, area.x0, y, n) : nullptr;
     if (p0.reversible)
       rct_to_samples(plane_at(p0.ints, p0, area.x0, y), plane_at(p1.ints, p1, area.x0, y),
                      plane_at(p2.ints, p2, area.x0, y), ranges, rows, n);
     else
       ict_to_samples(plane_at(p0.floats, p0, area.x0, y), plane_at(p1.floats, p1, area.x0, y),
                      plane_at(p2.floats, p2, area.x0, y), ranges, rows, n);
+    if (all_three) {
+      output.done012(area.x0, y, rows, n);
+    } else {
+      for (std::size_t c = 0; c < 3; ++c)
+        if (rows[c]) output.done(c, area.x0, y, rows[c], n);
+    }
   });
 }
 
 // The tile's planes into the output image: components 0..2 through the inverse component
 // transform when `mct`, every selected component level-shifted and clamped; the rows on the pool.
 void store_tile(const std::vector<Plane>& planes, bool mct, const Siz& siz, const std::vector<bool>& selected,
-                DecodedImage& image, base::ThreadPool& pool) {
+                DecodedImage& image, SampleSink* sink, base::ThreadPool& pool) {
+  const RowOutput output(image, sink);
   std::size_t first_plain = 0;  // components from here on have no component transform
   if (mct) {
     const Plane &p0 = planes[0], &p1 = planes[1], &p2 = planes[2];
@@ -356,7 +400,7 @@ void store_tile(const std::vector<Plane>& planes, bool mct, const Siz& siz, cons
       throw DecodeError("the component transform needs equal tile-components");
     if (p0.reversible != p1.reversible || p0.reversible != p2.reversible)
       throw DecodeError("the component transform needs components 0..2 all reversible or all irreversible");
-    std::array<DecodedComponent*, 3> outputs{};
+    std::array<const DecodedComponent*, 3> outputs{};
     OutputRanges ranges{};
     for (std::size_t c = 0; c < 3; ++c) {
       ranges[c] = sample_range(siz.components[c].precision, siz.components[c].is_signed);
@@ -373,20 +417,20 @@ void store_tile(const std::vector<Plane>& planes, bool mct, const Siz& siz, cons
     }
     const std::array<const Plane*, 3> transformed{&p0, &p1, &p2};
     if (same_area) {
-      if (shared && !shared->empty()) store_transformed(transformed, outputs, ranges, *shared, pool);
+      if (shared && !shared->empty()) store_transformed(transformed, outputs, output, ranges, *shared, pool);
     } else {
       for (std::size_t c = 0; c < 3; ++c) {
         if (!outputs[c]) continue;
-        std::array<DecodedComponent*, 3> one{};
+        std::array<const DecodedComponent*, 3> one{};
         one[c] = outputs[c];
         const Rect own = p0.rect.intersect(output_rect(*outputs[c]));
-        if (!own.empty()) store_transformed(transformed, one, ranges, own, pool);
+        if (!own.empty()) store_transformed(transformed, one, output, ranges, own, pool);
       }
     }
     first_plain = 3;
   }
   for (std::size_t c = first_plain; c < planes.size(); ++c)
-    if (selected[c]) store(planes[c], siz.components[c], image.components[c], pool);
+    if (selected[c]) store(planes[c], siz.components[c], c, output, image.components[c], pool);
 }
 
 // The tile's packets in the order they were sent: COD's progression, or with POC (A.6.6, B.12.2)
@@ -579,7 +623,7 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
   }
   const auto transform_start = Clock::now();
   blocks.clear();
-  store_tile(planes, params.cod.mct == 1 && needed[0], cs.siz, setup.selected, image, *setup.pool);
+  store_tile(planes, params.cod.mct == 1 && needed[0], cs.siz, setup.selected, image, setup.sink, *setup.pool);
   times.component_transform += ms_since(transform_start);
 }
 

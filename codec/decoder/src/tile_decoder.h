@@ -21,6 +21,7 @@ struct TileDecodeSetup {
   std::vector<bool> selected;                       // per codestream component: output or not
   base::ThreadPool* pool = nullptr;                 // tier-1 runs its code-blocks on it
   DecodeStageTimes* times = nullptr;                // required: each stage's time is added here
+  SampleSink* sink = nullptr;                       // where finished rows go; null: the image's components' samples
 };
 
 // Bytes one tile's structures and planes would need (an upper bound), so that a hostile header is

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "imageio/image.h"
 
@@ -57,10 +58,31 @@ PackedImage read_pnm_packed(const std::string& path);
 // Atomic: on failure no file (and no partial file) is left at `path`.
 void write_pnm(const std::string& path, const Image& image);
 
-// Writes 1 (P5) or 3 (P6) integer planes of width * height samples each, row by row, interleaved
-// into the file, with maxval 2^bits - 1 (bits 1..16) and no conversion to floats (a decoder's
-// output, written as it is). A sample outside 0..maxval is an IoError naming it.
-void write_pnm_planes(const std::string& path, int width, int height, int bits,
-                      std::span<const std::span<const std::int32_t>> planes);
+// A raw PNM file (P5 grey, P6 RGB) made in memory from integer rows put in any order, as a
+// decoder finishes them (from several threads at once, each sample once), then written whole: the
+// raster is in the file's layout from the start, with no plane per channel in between. Samples
+// never put are 0. Errors are IoErrors naming `path`.
+class PnmRaster {
+ public:
+  // width x height pixels of 1 or 3 channels of `bits` (1..16) bits, maxval 2^bits - 1.
+  PnmRaster(std::string path, int width, int height, int channels, int bits);
+  // Channel c of pixels [x, x + samples.size()) of row y; every sample in 0..maxval.
+  void put_row(int channel, std::size_t x, std::size_t y, std::span<const std::int32_t> samples);
+  // The three channels of those pixels at once (a 3-channel raster), interleaved vector-wide.
+  void put_rgb_row(std::size_t x, std::size_t y, std::span<const std::int32_t> r, std::span<const std::int32_t> g,
+                   std::span<const std::int32_t> b);
+  // The file, atomically: on failure no file (and no partial file) is left at the path.
+  void write() const;
+
+ private:
+  std::uint8_t* pixels_at(std::size_t x, std::size_t y, std::size_t n);  // checked against the raster
+  [[noreturn]] void throw_outside(std::span<const std::int32_t> samples, std::size_t x, std::size_t y) const;
+
+  std::string path_;
+  std::size_t width_ = 0, height_ = 0, channels_ = 0;
+  std::uint32_t maxval_ = 0;
+  std::size_t sample_bytes_ = 1, header_bytes_ = 0;
+  std::vector<std::uint8_t> bytes_;  // the header, then the raster
+};
 
 }  // namespace imageio

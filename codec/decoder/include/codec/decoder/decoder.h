@@ -116,6 +116,41 @@ DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& op
                     DecodeReport* report = nullptr);
 DecodedImage decode_file(const std::string& path, const DecodeOptions& options = {}, DecodeReport* report = nullptr);
 
+// Where decode_to hands the decoded samples, a row at a time, for the caller to store in its own
+// format: an 8-bit raster, a file's buffer, a caller's image. The decoder then keeps no image of
+// its own (four bytes per sample that would be allocated, cleared, filled and copied once more).
+// Rows are the final samples, as DecodedComponent::samples would hold them; coordinates are
+// relative to the output component's top-left (0 <= x, x + size <= width, 0 <= y < height).
+// Called from the decoder's worker threads, several at once, each sample exactly once (those of
+// tiles missing from the stream as zeros, as decode gives them). A sink may throw: the decode then
+// stops and rethrows it. After any error, what the sink got is a part of the image.
+class SampleSink {
+ public:
+  virtual ~SampleSink() = default;
+  // Called once before any row: the output's geometry (components, sizes, precisions, colour
+  // space), every `samples` empty. The place to size the sink's storage or refuse the image.
+  virtual void begin(const DecodedImage& /*geometry*/) {}
+  // Samples [x, x + samples.size()) of row y of output component `component`.
+  virtual void put_row(std::size_t component, std::size_t x, std::size_t y, std::span<const std::int32_t> samples) = 0;
+  // The same span of row y of output components 0, 1 and 2 at once (equal sizes), as the inverse
+  // component transform makes them, for a sink that interleaves them; by default three put_row.
+  virtual void put_rows012(std::size_t x, std::size_t y, std::span<const std::int32_t> c0,
+                           std::span<const std::int32_t> c1, std::span<const std::int32_t> c2) {
+    put_row(0, x, y, c0);
+    put_row(1, x, y, c1);
+    put_row(2, x, y, c2);
+  }
+};
+
+// Decodes as decode does, handing every sample to `sink` instead of keeping it: the image
+// returned has its components' geometry (and warnings, colour space) with empty `samples`. Where
+// the output needs the whole image first (a component selection, a JP2 palette, channel
+// definitions or sYCC conversion), the image is decoded as decode does and then handed over.
+DecodedImage decode_to(std::span<const std::uint8_t> bytes, SampleSink& sink, const DecodeOptions& options = {},
+                       DecodeReport* report = nullptr);
+DecodedImage decode_file_to(const std::string& path, SampleSink& sink, const DecodeOptions& options = {},
+                            DecodeReport* report = nullptr);
+
 // What decode would give, from the headers alone: the image area and each output component's
 // geometry (no samples) after reduce, region and selection. A JP2 file's palette, channel
 // definitions and colour conversion are not applied (its components are the codestream's).
