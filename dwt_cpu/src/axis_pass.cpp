@@ -78,6 +78,40 @@ void single_sample(const AxisPass& p, dwt::PlaneSpan<T> plane, bool inverse) {
     for (int x = 0; x < p.region_width; ++x) apply(plane.at(x, 0));
 }
 
+// A run of a horizontal inverse's gather: signal[dst, dst + length) = row[src, src + length), or
+// zeros where src < 0 (the extension's zero samples).
+struct GatherRun {
+  int dst, src, length;
+};
+
+// The runs of one class's signal, whose sample j is at extended position first + 2 j.
+std::vector<GatherRun> gather_runs(const std::vector<int>& map, int first, int size) {
+  std::vector<GatherRun> runs;
+  for (int j = 0; j < size; ++j) {
+    const int src = map[static_cast<std::size_t>(first + 2 * j)];
+    if (!runs.empty()) {
+      GatherRun& last = runs.back();
+      const bool continues = src < 0 ? last.src < 0 : last.src >= 0 && src == last.src + last.length;
+      if (continues) {
+        ++last.length;
+        continue;
+      }
+    }
+    runs.push_back(GatherRun{j, src, 1});
+  }
+  return runs;
+}
+
+template <class T>
+void gather(const std::vector<GatherRun>& runs, const T* row, T* signal) {
+  for (const GatherRun& r : runs) {
+    if (r.src < 0)
+      std::fill_n(signal + r.dst, r.length, T(0));
+    else
+      std::copy_n(row + r.src, r.length, signal + r.dst);
+  }
+}
+
 // Horizontal pass: each row is split into its low and high components (with extension), lifted
 // there, and the interior copied out contiguously: low half then high half (forward), or
 // re-interleaved (inverse).
@@ -90,6 +124,12 @@ void run_rows(const Layout& L, const AxisPass& p, dwt::PlaneSpan<T> plane, base:
   // Interior samples start at extended position pad: the first low/high component index there.
   const int low_skip = (L.pad - first_low + 1) / 2, high_skip = (L.pad - (1 - first_low) + 1) / 2;
   const std::size_t tasks = (static_cast<std::size_t>(L.lanes) + kRowsPerTask - 1) / kRowsPerTask;
+  // The inverse's gathers as runs: each class's coefficients are contiguous in the Mallat-ordered
+  // row apart from the extension, so a row is gathered in a few copies instead of a map lookup and
+  // a branch per sample.
+  const std::vector<GatherRun> low_runs = inverse ? gather_runs(map, first_low, low_size) : std::vector<GatherRun>{};
+  const std::vector<GatherRun> high_runs =
+      inverse ? gather_runs(map, 1 - first_low, high_size) : std::vector<GatherRun>{};
   pool.parallel_for(tasks, [&](std::size_t task) {
     thread_local std::vector<T> scratch;
     scratch.resize(static_cast<std::size_t>(low_size + high_size));
@@ -102,8 +142,8 @@ void run_rows(const Layout& L, const AxisPass& p, dwt::PlaneSpan<T> plane, base:
         return src < 0 ? T(0) : row[src];
       };
       if (inverse) {
-        for (int j = 0; j < low_size; ++j) sig.low[j] = fetch(first_low + 2 * j);
-        for (int j = 0; j < high_size; ++j) sig.high[j] = fetch(1 - first_low + 2 * j);
+        gather(low_runs, row, sig.low);
+        gather(high_runs, row, sig.high);
       } else {
         // Pair j holds extended positions 2j and 2j + 1 (low[j] and high[j] in some order); where
         // both lie inside the row, at samples 2j - pad and 2j + 1 - pad, one interleaved load splits
@@ -120,11 +160,16 @@ void run_rows(const Layout& L, const AxisPass& p, dwt::PlaneSpan<T> plane, base:
       }
       if (inverse) {
         lift_inverse(p.kernel, sig);
-        for (int e = 0; e < L.n; ++e) {
+        // Sample e is the next of its class's lifted signal every two samples: the interior goes
+        // back as one interleave of the classes of samples 0 and 1.
+        auto lifted = [&](int e) {
           const int position = e + L.pad;
-          row[e] = ((position - first_low) & 1) == 0 ? sig.low[(position - first_low) >> 1]
-                                                     : sig.high[(position - 1 + first_low) >> 1];
-        }
+          return ((position - first_low) & 1) == 0 ? sig.low + ((position - first_low) >> 1)
+                                                   : sig.high + ((position - 1 + first_low) >> 1);
+        };
+        const T* even = lifted(0);
+        simd::interleave(even, lifted(1), row, static_cast<std::size_t>(L.n / 2));
+        if (L.n % 2 != 0) row[L.n - 1] = even[L.n / 2];
       } else if constexpr (std::is_floating_point_v<T>) {
         // The gains on the way out: one pass over the row fewer.
         lift_forward_steps(p.kernel, sig);

@@ -140,6 +140,21 @@ void DeinterleaveInt(const std::int32_t* src, std::int32_t* even, std::int32_t* 
   DeinterleaveImpl(src, even, odd, n);
 }
 
+template <class T>
+void InterleaveImpl(const T* HWY_RESTRICT even, const T* HWY_RESTRICT odd, T* HWY_RESTRICT dst, std::size_t n) {
+  const hn::ScalableTag<T> d;
+  const std::size_t N = hn::Lanes(d);
+  std::size_t j = 0;
+  for (; j + N <= n; j += N) hn::StoreInterleaved2(hn::LoadU(d, even + j), hn::LoadU(d, odd + j), d, dst + 2 * j);
+  for (; j < n; ++j) dst[2 * j] = even[j], dst[2 * j + 1] = odd[j];
+}
+void InterleaveFloat(const float* even, const float* odd, float* dst, std::size_t n) {
+  InterleaveImpl(even, odd, dst, n);
+}
+void InterleaveInt(const std::int32_t* even, const std::int32_t* odd, std::int32_t* dst, std::size_t n) {
+  InterleaveImpl(even, odd, dst, n);
+}
+
 std::int64_t CurrentTarget() { return HWY_TARGET; }
 
 }  // namespace HWY_NAMESPACE
@@ -160,6 +175,8 @@ HWY_EXPORT(Predict53Lines);
 HWY_EXPORT(Update53Lines);
 HWY_EXPORT(DeinterleaveFloat);
 HWY_EXPORT(DeinterleaveInt);
+HWY_EXPORT(InterleaveFloat);
+HWY_EXPORT(InterleaveInt);
 HWY_EXPORT(CurrentTarget);
 
 void lift_symmetric(float* t, const float* l, const float* r, float c, std::size_t n) {
@@ -195,6 +212,12 @@ void deinterleave(const float* src, float* even, float* odd, std::size_t n) {
 }
 void deinterleave(const std::int32_t* src, std::int32_t* even, std::int32_t* odd, std::size_t n) {
   HWY_DYNAMIC_DISPATCH(DeinterleaveInt)(src, even, odd, n);
+}
+void interleave(const float* even, const float* odd, float* dst, std::size_t n) {
+  HWY_DYNAMIC_DISPATCH(InterleaveFloat)(even, odd, dst, n);
+}
+void interleave(const std::int32_t* even, const std::int32_t* odd, std::int32_t* dst, std::size_t n) {
+  HWY_DYNAMIC_DISPATCH(InterleaveInt)(even, odd, dst, n);
 }
 const char* target_name() { return hwy::TargetName(HWY_DYNAMIC_DISPATCH(CurrentTarget)()); }
 

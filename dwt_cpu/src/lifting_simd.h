@@ -32,6 +32,9 @@ void scale_copy(const float* src, float* dst, float s, std::size_t n);
 // Splits n interleaved pairs: even[j] = src[2j], odd[j] = src[2j + 1].
 void deinterleave(const float* src, float* even, float* odd, std::size_t n);
 void deinterleave(const std::int32_t* src, std::int32_t* even, std::int32_t* odd, std::size_t n);
+// Joins n pairs, deinterleave's inverse: dst[2j] = even[j], dst[2j + 1] = odd[j].
+void interleave(const float* even, const float* odd, float* dst, std::size_t n);
+void interleave(const std::int32_t* even, const std::int32_t* odd, std::int32_t* dst, std::size_t n);
 
 const char* target_name();  // e.g. "AVX2"
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "imageio/image.h"
+#include "imageio/plane_memory.h"
 
 namespace imageio {
 
@@ -82,7 +83,7 @@ class PnmRaster {
   std::size_t width_ = 0, height_ = 0, channels_ = 0;
   std::uint32_t maxval_ = 0;
   std::size_t sample_bytes_ = 1, header_bytes_ = 0;
-  std::vector<std::uint8_t> bytes_;  // the header, then the raster
+  std::vector<std::uint8_t, UninitialisedAllocator<std::uint8_t>> bytes_;  // the header, then the raster
 };
 
 }  // namespace imageio
