@@ -24,16 +24,25 @@ int exponent(std::uint32_t mu) { return static_cast<int>(std::bit_width((mu << 1
 // straddle its right or bottom edge and the neighbours of edge quads need no special cases: the
 // exponents are kept with a border (two columns either side, a row above and below) wide enough
 // for every neighbour the contexts and the exponent predictor read, so no read checks bounds.
+// The magnitudes are read shifted down to the cleanup's plane (mu = magnitude >> plane), so that
+// no shifted copy of the block is made per candidate plane; the exponents live in a buffer of the
+// thread's, reused from block to block.
 class SampleGrid {
  public:
-  SampleGrid(std::span<const std::uint32_t> mu, std::span<const std::uint8_t> negative, int width, int height)
-      : mu_(mu),
+  SampleGrid(std::span<const std::uint32_t> magnitudes, std::span<const std::uint8_t> negative, int width, int height,
+             int plane)
+      : magnitudes_(magnitudes),
         negative_(negative),
         width_(width),
+        plane_(plane),
         stride_(static_cast<std::size_t>(width) + 2 * kBorder),
-        exponents_(stride_ * (static_cast<std::size_t>(height) + 2) + kPairOverread, 0) {
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) exponents_[cell(x, y)] = static_cast<std::uint8_t>(exponent(mu[index(x, y)]));
+        exponents_(thread_exponents()) {
+    exponents_.assign(stride_ * (static_cast<std::size_t>(height) + 2) + kPairOverread, 0);
+    for (int y = 0; y < height; ++y) {
+      const std::uint32_t* row = magnitudes.data() + index(0, y);
+      std::uint8_t* cells = exponents_.data() + cell(0, y);
+      for (int x = 0; x < width; ++x) cells[x] = static_cast<std::uint8_t>(exponent(row[x] >> plane));
+    }
   }
   // x in -2 .. width + 1, y in -1 .. height.
   int exponent_at(int x, int y) const { return exponents_[cell(x, y)]; }
@@ -49,10 +58,14 @@ class SampleGrid {
   // v_n = 2 (mu - 1) + s (T.814 7.3.8), for a significant sample.
   std::uint32_t magsgn_value(int x, int y) const {
     const std::size_t i = index(x, y);
-    return 2 * (mu_[i] - 1) + (negative_[i] ? 1u : 0u);
+    return 2 * ((magnitudes_[i] >> plane_) - 1) + (negative_[i] ? 1u : 0u);
   }
 
  private:
+  static std::vector<std::uint8_t>& thread_exponents() {
+    thread_local std::vector<std::uint8_t> buffer;
+    return buffer;
+  }
   static constexpr std::size_t kBorder = 2;
   // pair_empty reads four cells from a lone last quad's x0, one past the right border when the
   // width is odd: the next row's (zero) left border, or for the bottom border row these bytes.
@@ -63,11 +76,11 @@ class SampleGrid {
   std::size_t cell(int x, int y) const {
     return static_cast<std::size_t>(y + 1) * stride_ + static_cast<std::size_t>(x + static_cast<int>(kBorder));
   }
-  std::span<const std::uint32_t> mu_;
+  std::span<const std::uint32_t> magnitudes_;
   std::span<const std::uint8_t> negative_;
-  int width_;
+  int width_, plane_;
   std::size_t stride_;
-  std::vector<std::uint8_t> exponents_;
+  std::vector<std::uint8_t>& exponents_;
 };
 
 struct QuadCoding {
@@ -81,14 +94,14 @@ struct QuadCoding {
 
 // Context c_q of a quad in the first row of quads (T.814 7.3.5): from the four samples of the quad
 // to its left.
-int initial_row_context(const SampleGrid& g, int x0) {
+[[gnu::always_inline]] inline int initial_row_context(const SampleGrid& g, int x0) {
   const int far = g.significant(x0 - 2, 0) | g.significant(x0 - 2, 1);
   return far | (g.significant(x0 - 1, 0) << 1) | (g.significant(x0 - 1, 1) << 2);
 }
 
 // Context c_q of a quad in any other row: from the row above (x0 - 1 .. x0 + 2) and the two
 // samples to its left.
-int other_row_context(const SampleGrid& g, int x0, int y0) {
+[[gnu::always_inline]] inline int other_row_context(const SampleGrid& g, int x0, int y0) {
   const int north = g.significant(x0 - 1, y0 - 1) | g.significant(x0, y0 - 1);
   const int west = g.significant(x0 - 1, y0) | g.significant(x0 - 1, y0 + 1);
   const int east = g.significant(x0 + 1, y0 - 1) | g.significant(x0 + 2, y0 - 1);
@@ -245,14 +258,15 @@ std::vector<std::uint8_t> assemble(std::vector<std::uint8_t> magsgn, MelPacker& 
 }  // namespace
 
 std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitudes,
-                                         std::span<const std::uint8_t> negative, int width, int height) {
+                                         std::span<const std::uint8_t> negative, int width, int height, int plane) {
   if (width < 1 || height < 1 || width > 1024 || height > 1024 || width * height > 4096)
     throw std::invalid_argument("HT cleanup: a code-block of " + std::to_string(width) + "x" + std::to_string(height) +
                                 " is outside 1..1024 with at most 4096 samples");
   const auto samples = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   if (magnitudes.size() != samples || negative.size() != samples)
     throw std::invalid_argument("HT cleanup: magnitudes and signs must hold width * height samples");
-  const SampleGrid grid(magnitudes, negative, width, height);
+  if (plane < 0 || plane > 30) throw std::invalid_argument("HT cleanup: the plane must be 0..30");
+  const SampleGrid grid(magnitudes, negative, width, height, plane);
   const int quads_wide = (width + 1) / 2, quads_high = (height + 1) / 2;
 
   MagSgnPacker magsgn;

@@ -158,13 +158,7 @@ t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int 
     out.missing_msbs = magnitude_bitplanes;
     return out;
   }
-  if (cleanup_plane == 0) {
-    out.data = encode_cleanup(b.magnitudes, b.negative, b.width, b.height);
-  } else {
-    std::vector<std::uint32_t> mu(b.magnitudes.size());
-    for (std::size_t i = 0; i < mu.size(); ++i) mu[i] = b.magnitudes[i] >> cleanup_plane;
-    out.data = encode_cleanup(mu, b.negative, b.width, b.height);
-  }
+  out.data = encode_cleanup(b.magnitudes, b.negative, b.width, b.height, cleanup_plane);
   out.first_pass_planes = out.bit_planes - cleanup_plane;
   out.missing_msbs = magnitude_bitplanes - 1 - cleanup_plane;
   const double decrease = measured ? sums.energy - sums.after_cleanup : 0.0;
