@@ -105,34 +105,39 @@ CleanupErrors CleanupErrorSums(const std::uint32_t* HWY_RESTRICT magnitude, cons
   return out;
 }
 
-void AddSignificantErrors(const std::uint32_t* HWY_RESTRICT magnitude, const double* HWY_RESTRICT offset, std::size_t n,
-                          int planes, double half_at_zero, double* HWY_RESTRICT error) {
+void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const double* HWY_RESTRICT offset, std::size_t n,
+                 int planes, double half_at_zero, double* HWY_RESTRICT error) {
   const hn::ScalableTag<double> dd;
   const hn::Rebind<std::int32_t, decltype(dd)> di;  // as many int32 lanes as doubles
   const std::size_t N = hn::Lanes(dd);
-  for (int p = 0; p < planes; ++p) {
-    const auto low_bits = static_cast<std::int32_t>((std::uint32_t{1} << p) - 1);
-    const double half = p > 0 ? static_cast<double>(std::uint32_t{1} << (p - 1)) : half_at_zero;
-    const auto mask = hn::Set(di, low_bits), one = hn::Set(di, 1);
+  for (int p = 0; p <= planes; ++p) {
+    const auto low_bits = static_cast<std::int32_t>((std::uint64_t{1} << p) - 1);
+    const double half = p > 0 ? static_cast<double>(std::uint64_t{1} << (p - 1)) : half_at_zero;
+    const auto mask = hn::Set(di, low_bits), high_mask = hn::Not(mask), one = hn::Set(di, 1);
     const auto h = hn::Set(dd, half);
     auto sum = hn::Zero(dd);
     std::size_t i = 0;
     for (; i + N <= n; i += N) {
-      // Magnitudes are below 2^31, so they compare and mask as int32.
+      // Magnitudes are below 2^31, so they compare and mask as int32. A significant sample leaves
+      // v - (its bits from plane p up) - half = (m mod 2^p) + offset - half, exactly (every term is
+      // a multiple of 1/256 below 2^31); an insignificant one leaves v.
       const auto m = hn::BitCast(di, hn::LoadU(hn::RebindToUnsigned<decltype(di)>(), magnitude + i));
       const auto significant = hn::PromoteTo(dd, hn::IfThenElseZero(hn::Gt(m, mask), one));  // 1.0 or 0.0
-      const auto residual = hn::Sub(hn::Add(hn::PromoteTo(dd, hn::And(m, mask)), hn::LoadU(dd, offset + i)), h);
-      const auto counted = hn::Mul(residual, significant);
-      sum = hn::MulAdd(counted, counted, sum);
+      const auto value = hn::Add(hn::PromoteTo(dd, m), hn::LoadU(dd, offset + i));
+      const auto dropped = hn::Add(hn::PromoteTo(dd, hn::And(m, high_mask)), h);
+      const auto left = hn::NegMulAdd(significant, dropped, value);
+      sum = hn::MulAdd(left, left, sum);
     }
     double total = hn::GetLane(hn::SumOfLanes(dd, sum));
     for (; i < n; ++i) {
-      if (magnitude[i] <= static_cast<std::uint32_t>(low_bits)) continue;
-      const double residual =
-          static_cast<double>(magnitude[i] & static_cast<std::uint32_t>(low_bits)) + offset[i] - half;
-      total += residual * residual;
+      const double value = static_cast<double>(magnitude[i]) + offset[i];
+      const double left =
+          magnitude[i] <= static_cast<std::uint32_t>(low_bits)
+              ? value
+              : value - (static_cast<double>(magnitude[i] & ~static_cast<std::uint32_t>(low_bits)) + half);
+      total += left * left;
     }
-    error[p] += total;
+    error[p] = total;
   }
 }
 
@@ -143,7 +148,7 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace codec::ht::simd {
 HWY_EXPORT(QuantizeRow);
-HWY_EXPORT(AddSignificantErrors);
+HWY_EXPORT(PlaneErrors);
 HWY_EXPORT(CleanupErrorSums);
 
 CleanupErrors cleanup_errors(const std::uint32_t* magnitude, const std::uint8_t* fraction, std::size_t n, int p,
@@ -156,9 +161,9 @@ std::uint32_t quantize_row(const float* row, std::size_t n, float inverse_step, 
   return HWY_DYNAMIC_DISPATCH(QuantizeRow)(row, n, inverse_step, magnitude, negative, fraction);
 }
 
-void add_significant_errors(const std::uint32_t* magnitude, const double* offset, std::size_t n, int planes,
-                            double half_at_zero, double* error) {
-  HWY_DYNAMIC_DISPATCH(AddSignificantErrors)(magnitude, offset, n, planes, half_at_zero, error);
+void plane_errors(const std::uint32_t* magnitude, const double* offset, std::size_t n, int planes, double half_at_zero,
+                  double* error) {
+  HWY_DYNAMIC_DISPATCH(PlaneErrors)(magnitude, offset, n, planes, half_at_zero, error);
 }
 
 }  // namespace codec::ht::simd

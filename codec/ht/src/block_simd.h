@@ -23,14 +23,13 @@ struct CleanupErrors {
 CleanupErrors cleanup_errors(const std::uint32_t* magnitude, const std::uint8_t* fraction, std::size_t n, int p,
                              double half_at_zero, bool refinement);
 
-// The squared error a cleanup from each bit-plane leaves on the samples it makes significant,
-// summed for all planes at once (plane_statistics' costliest part: a sum over samples and their
-// planes).
-// For each plane p < planes: error[p] += the sum, over samples with magnitude[i] >= 2^p, of
-// ((magnitude[i] mod 2^p) + offset[i] - half(p))^2, where half(p) = 2^(p-1) for p > 0 and
-// `half_at_zero` for p = 0. `offset` holds each sample's fraction below its index (0 when none).
-// Magnitudes are below 2^31.
-void add_significant_errors(const std::uint32_t* magnitude, const double* offset, std::size_t n, int planes,
-                            double half_at_zero, double* error);
+// The squared error a cleanup from each bit-plane leaves, for all planes at once (plane_statistics'
+// costliest part: a sum over samples and their planes). For each plane p = 0 .. planes:
+// error[p] = the sum over all samples of e_p^2, e_p = v = magnitude[i] + offset[i] where
+// magnitude[i] < 2^p, else (magnitude[i] mod 2^p) + offset[i] - half(p), where half(p) = 2^(p-1)
+// for p > 0 and `half_at_zero` for p = 0. `offset` holds each sample's fraction below its index (0
+// when none). Magnitudes are below 2^31, planes at most 31.
+void plane_errors(const std::uint32_t* magnitude, const double* offset, std::size_t n, int planes, double half_at_zero,
+                  double* error);
 
 }  // namespace codec::ht::simd

@@ -170,27 +170,18 @@ t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int 
 std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
   const int planes = b.bit_planes;
   std::vector<PlaneStatistics> out(static_cast<std::size_t>(planes) + 1);
-  // Errors: a magnitude below 2^p leaves its whole value, gathered per bit length and summed over
-  // the planes at or above it; one at or above 2^p leaves its residual at p, summed plane by plane.
-  std::vector<double> insignificant(static_cast<std::size_t>(planes) + 1, 0.0);
+  // Errors, plane by plane over all samples in SIMD: a magnitude below 2^p leaves its whole value,
+  // one at or above it its residual at p.
   thread_local std::vector<double> offsets;  // each sample's fraction below its index
   offsets.resize(b.magnitudes.size());
-  const std::uint8_t* fractions = b.fractions.empty() ? nullptr : b.fractions.data();
-  for (std::size_t i = 0; i < b.magnitudes.size(); ++i) {
-    const std::uint32_t m = b.magnitudes[i];
-    offsets[i] = fractions ? fractions[i] / 256.0 : 0.0;
-    const double value = static_cast<double>(m) + offsets[i];  // value_of(b, i), exactly
-    insignificant[static_cast<std::size_t>(std::bit_width(m))] += value * value;
-  }
-  std::vector<double> significant(static_cast<std::size_t>(planes), 0.0);
-  simd::add_significant_errors(b.magnitudes.data(), offsets.data(), b.magnitudes.size(), planes, half_interval(b, 0),
-                               significant.data());
-  for (int p = 0; p < planes; ++p) out[static_cast<std::size_t>(p)].error += significant[static_cast<std::size_t>(p)];
-  double below = 0;
-  for (int p = 0; p <= planes; ++p) {
-    below += insignificant[static_cast<std::size_t>(p)];
-    out[static_cast<std::size_t>(p)].error += below;
-  }
+  if (b.fractions.empty())
+    std::fill(offsets.begin(), offsets.end(), 0.0);
+  else
+    for (std::size_t i = 0; i < offsets.size(); ++i) offsets[i] = b.fractions[i] / 256.0;
+  std::vector<double> errors(static_cast<std::size_t>(planes) + 1);
+  simd::plane_errors(b.magnitudes.data(), offsets.data(), b.magnitudes.size(), planes, half_interval(b, 0),
+                     errors.data());
+  for (int p = 0; p <= planes; ++p) out[static_cast<std::size_t>(p)].error = errors[static_cast<std::size_t>(p)];
   // Counts, quad by quad (T.814 7.3.1: 2x2 quads, samples outside the block insignificant). On plane
   // p a quad whose largest magnitude L has bit length l > p is significant; each of its samples of
   // bit length n > p is, and sends U = bit_width(2 (L >> p) - 1) = l - p + [p < t] bits (T.814
