@@ -1,6 +1,8 @@
 #include "refinement_encoder.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -73,9 +75,19 @@ class Significance {
   Significance(std::span<const std::uint32_t> magnitudes, int width, int height, int plane)
       : width_(width),
         stride_(static_cast<std::size_t>(width) + 2),
-        state_(stride_ * (static_cast<std::size_t>(height) + 2), 0) {
+        state_(stride_ * (static_cast<std::size_t>(height) + 2) + kRowOverread, 0) {
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) state_[cell(x, y)] = (magnitudes[index(x, y)] >> plane) != 0 ? 1 : 0;
+  }
+  // Whether any of the eight neighbours of the insignificant sample at `cell` is significant: the
+  // three cells from its north-west, west and south-west neighbour each read as one word (the
+  // sample's own cell is 0, so the middle word need not mask it).
+  static bool any_neighbour(const std::uint8_t* cell, std::size_t stride) {
+    std::uint32_t above, middle, below;
+    std::memcpy(&above, cell - stride - 1, sizeof above);
+    std::memcpy(&middle, cell - 1, sizeof middle);
+    std::memcpy(&below, cell + stride - 1, sizeof below);
+    return ((above | middle | below) & kThreeCells) != 0;
   }
   // Raw access for the passes' inner loops: the state byte of (x, y) is cells()[cell_of(x, y)],
   // rows stride() apart.
@@ -93,6 +105,10 @@ class Significance {
     return (static_cast<std::size_t>(y) + 1) * stride_ + static_cast<std::size_t>(x) + 1;
   }
 
+  // The low three bytes of a little-endian word: the three cells from the one it starts at.
+  static constexpr std::uint32_t kThreeCells = std::endian::native == std::endian::little ? 0x00FFFFFFu : 0xFFFFFF00u;
+  // any_neighbour reads a word, one cell past a bottom-border row's last cell.
+  static constexpr std::size_t kRowOverread = 1;
   int width_;
   std::size_t stride_;
   std::vector<std::uint8_t> state_;  // 0 insignificant, 1 significant in the cleanup, 2 by SigProp
@@ -115,10 +131,7 @@ void sigprop_pass(std::span<const std::uint32_t> m, std::span<const std::uint8_t
         std::uint8_t* cell = sig.cells() + sig.cell_of(x, y0);
         std::size_t i = sig.index(x, y0);
         for (int y = y0; y < y1; ++y, cell += stride, i += static_cast<std::size_t>(width)) {
-          if (cell[0] != 0) continue;
-          const std::uint8_t* above = cell - stride;
-          const std::uint8_t* below = cell + stride;
-          if ((above[-1] | above[0] | above[1] | cell[-1] | cell[1] | below[-1] | below[0] | below[1]) == 0) continue;
+          if (cell[0] != 0 || !Significance::any_neighbour(cell, stride)) continue;
           const std::uint32_t bit = (m[i] >> q) & 1;
           out.put(bit);
           if (bit) {
