@@ -35,8 +35,11 @@ std::string lower_symbols(const std::string& program) {
   return symbols;
 }
 
-// The program's dynamic dependencies as readelf lists them.
-std::string needed_libraries(const std::string& program) { return output_of("readelf -d '" + program + "' 2>&1"); }
+// The program's dynamic dependencies: the NEEDED lines of readelf's dynamic section, alone (the
+// other lines hold addresses, where "x264" can occur as hex digits, "0x26436").
+std::string needed_libraries(const std::string& program) {
+  return output_of("readelf -d '" + program + "' 2>&1 | grep NEEDED");
+}
 
 // No GPL library among the program's dependencies and none of their code in it.
 void expect_no_gpl(const std::string& program) {

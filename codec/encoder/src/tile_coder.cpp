@@ -232,8 +232,11 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
                                        out.floats[2].data() + y * w, w);
           continue;
         }
-        const std::int32_t *r = source_row(0, y, scratch.data()), *g = source_row(1, y, scratch.data() + w),
-                           *b = source_row(2, y, scratch.data() + 2 * w);
+        // Component c's room in the scratch row; none (null, not an offset from null) when the
+        // source is planar and rows are read where they lie.
+        auto room = [&](std::size_t c) { return scratch.empty() ? nullptr : scratch.data() + c * w; };
+        const std::int32_t *r = source_row(0, y, room(0)), *g = source_row(1, y, room(1)),
+                           *b = source_row(2, y, room(2));
         if (lossless) {
           rct_forward_row(r, g, b, s0, s1, s2, out.integers[0].data() + y * w, out.integers[1].data() + y * w,
                           out.integers[2].data() + y * w, w);
