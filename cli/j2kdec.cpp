@@ -75,11 +75,14 @@ void write_other(const std::string& path, const codec::DecodedImage& img) {
   imageio::write_image(path, out);
 }
 
-// Whether the decoded image goes to a PNM file as its integer samples: 1 or 3 unsigned components
-// of one size and precision (at most 16 bits), to .pgm, .ppm or .pnm.
-bool pnm_raster_fits(const std::string& path, const codec::DecodedImage& geometry) {
+bool is_pnm_path(const std::string& path) {
   const std::string ext = cli::lower_extension(path);
-  if (ext != ".pgm" && ext != ".ppm" && ext != ".pnm") return false;
+  return ext == ".pgm" || ext == ".ppm" || ext == ".pnm";
+}
+
+// Whether a PNM raster holds the decoded image as its integer samples: 1 or 3 unsigned components
+// of one size and precision, at most 16 bits.
+bool pnm_raster_fits(const codec::DecodedImage& geometry) {
   const auto& comps = geometry.components;
   if (comps.size() != 1 && comps.size() != 3) return false;
   for (const auto& c : comps)
@@ -89,16 +92,16 @@ bool pnm_raster_fits(const std::string& path, const codec::DecodedImage& geometr
   return true;
 }
 
-// Where the decoder's rows go: straight into the PNM file's raster when it can hold them (no
-// integer plane per component in between: 4 bytes a sample less to allocate, clear and read back),
-// else into an image of integer planes for the other writers.
-class OutputSink : public codec::SampleSink {
+// A PNM output's rows, straight from the decoder into the file's raster (no integer plane per
+// component in between: 4 bytes a sample less to allocate, clear and read back). An image the
+// raster cannot hold is kept as integer planes, for write_other to say why PNM cannot store it.
+class PnmSink : public codec::SampleSink {
  public:
-  explicit OutputSink(std::string path) : path_(std::move(path)) {}
+  explicit PnmSink(std::string path) : path_(std::move(path)) {}
 
   void begin(const codec::DecodedImage& geometry) override {
     image_ = geometry;
-    if (pnm_raster_fits(path_, geometry)) {
+    if (pnm_raster_fits(geometry)) {
       const auto& c0 = geometry.components[0];
       raster_.emplace(path_, c0.width, c0.height, static_cast<int>(geometry.components.size()), c0.precision);
       return;
@@ -117,12 +120,9 @@ class OutputSink : public codec::SampleSink {
     SampleSink::put_rows012(x, y, c0, c1, c2);
   }
 
-  // The output file(s).
   void write() const {
     if (raster_)
       raster_->write();
-    else if (cli::lower_extension(path_) == ".pgx")
-      write_pgx(path_, image_);
     else
       write_other(path_, image_);
   }
@@ -244,14 +244,22 @@ int main(int argc, char** argv) {
     if (!region.empty()) options.region = region_of(region);
     options.dwt = device_of(dwt);
     codec::DecodeReport report;
-    OutputSink sink(output);
-    const codec::DecodedImage image = codec::decode_file_to(input, sink, options, &report);
+    // PNM output takes the rows as they are made; the other writers take the decoded image.
+    std::optional<PnmSink> pnm;
+    if (is_pnm_path(output)) pnm.emplace(output);
+    const codec::DecodedImage image =
+        pnm ? codec::decode_file_to(input, *pnm, options, &report) : codec::decode_file(input, options, &report);
     if (!quiet)
       for (const std::string& w : image.warnings)
         std::fprintf(stderr, "j2kdec: %s: warning: %s\n", input.c_str(), base::one_line(w).c_str());
     const auto write_start = Clock::now();
     try {
-      sink.write();
+      if (pnm)
+        pnm->write();
+      else if (ext == ".pgx")
+        write_pgx(output, image);
+      else
+        write_other(output, image);
     } catch (const imageio::IoError& e) {
       std::fprintf(stderr, "j2kdec: %s\n", base::one_line(e.what()).c_str());
       return 1;

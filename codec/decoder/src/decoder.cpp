@@ -212,17 +212,18 @@ namespace {
 // A decoded image to the sink: its geometry, then every row of every component, on the pool; the
 // samples are then released, as decode_to promises.
 void hand_over(DecodedImage& image, SampleSink& sink, base::ThreadPool& pool) {
-  DecodedImage geometry = image;
-  for (DecodedComponent& c : geometry.components) c.samples = {};
-  sink.begin(geometry);
+  // The samples move out, so that the image the sink begins with is its geometry alone, uncopied.
+  std::vector<std::vector<std::int32_t>> samples;
+  for (DecodedComponent& comp : image.components) samples.push_back(std::move(comp.samples));
+  for (DecodedComponent& comp : image.components) comp.samples = {};
+  sink.begin(image);
   for (std::size_t c = 0; c < image.components.size(); ++c) {
-    DecodedComponent& comp = image.components[c];
-    const auto width = static_cast<std::size_t>(comp.width);
-    if (comp.samples.empty()) continue;
-    pool.parallel_for(static_cast<std::size_t>(comp.height), [&](std::size_t y) {
-      sink.put_row(c, 0, y, std::span<const std::int32_t>(comp.samples.data() + y * width, width));
+    const std::vector<std::int32_t>& rows = samples[c];
+    const auto width = static_cast<std::size_t>(image.components[c].width);
+    if (rows.empty()) continue;
+    pool.parallel_for(static_cast<std::size_t>(image.components[c].height), [&](std::size_t y) {
+      sink.put_row(c, 0, y, std::span<const std::int32_t>(rows.data() + y * width, width));
     });
-    comp.samples = {};
   }
 }
 
