@@ -84,10 +84,11 @@ def parse_encoders(text):
 
 
 def find_kodak_dir(given=None):
-    """The Kodak photographs: --kodak DIR, else ../shared/testimages/kodak next to the project."""
+    """The Kodak photographs: --kodak DIR, else ../shared/testimages/kodak next to the project (kodimNN.png,
+    or PPM conversions kodimNN.ppm where OpenImageIO is absent)."""
     candidates = [given] if given else [os.path.join(PROJECT_ROOT, "..", "shared", "testimages", "kodak")]
     for d in candidates:
-        if d and os.path.isfile(os.path.join(d, "kodim01.png")):
+        if d and any(os.path.isfile(os.path.join(d, "kodim01." + ext)) for ext in ("png", "ppm")):
             return os.path.realpath(d)
     return None
 

@@ -22,7 +22,7 @@ std::string find_kodak_dir() {
   roots.emplace_back(fs::current_path());
   for (const auto& root : roots) {
     const fs::path dir = root / ".." / "shared" / "testimages" / "kodak";
-    if (fs::exists(dir / "kodim01.png")) return fs::weakly_canonical(dir).string();
+    if (fs::exists(dir / "kodim01.png") || fs::exists(dir / "kodim01.ppm")) return fs::weakly_canonical(dir).string();
   }
   return "";
 }
@@ -30,17 +30,25 @@ std::string find_kodak_dir() {
 imageio::Image kodak_mosaic(int size, const std::string& kodak_dir, int& used) {
   std::vector<imageio::Image> photos;
   for (int i = 1; i <= 16; ++i) {
-    char name[32];
-    std::snprintf(name, sizeof name, "kodim%02d.png", i);
-    const fs::path path = fs::path(kodak_dir) / name;
-    if (!fs::exists(path)) continue;
+    // PPM conversions serve where OpenImageIO, which reads the PNGs, is absent (a codec-alone build,
+    // a machine the benchmarks are carried to).
+    fs::path path;
+    for (const char* ext : {"png", "ppm"}) {
+      char name[32];
+      std::snprintf(name, sizeof name, "kodim%02d.%s", i, ext);
+      if (fs::exists(fs::path(kodak_dir) / name)) {
+        path = fs::path(kodak_dir) / name;
+        break;
+      }
+    }
+    if (path.empty()) continue;
     photos.push_back(imageio::read_image(path.string()));
     const auto& p = photos.back();
     if (p.channels != 3 || p.is_float || p.bits_per_sample != 8)
       throw std::runtime_error(path.string() + ": expected an 8-bit RGB photograph");
     if (p.width >= size && p.height >= size) break;  // one photograph is enough
   }
-  if (photos.empty()) throw std::runtime_error(kodak_dir + ": no kodimNN.png photographs there");
+  if (photos.empty()) throw std::runtime_error(kodak_dir + ": no kodimNN.png (or .ppm) photographs there");
   imageio::Image out;
   out.width = out.height = size;
   out.channels = 3;

@@ -169,7 +169,7 @@ void table_3_9(glc::Context& context, const Character& c, const std::vector<glm:
       settings.height = h;
       settings.effects = performer::render::parse_effects(effects);
       settings.cubemap_dir = cubemap;
-      if (settings.effects.environment && !std::filesystem::exists(cubemap / "posx.jpg")) continue;
+      if (settings.effects.environment && performer::render::cubemap_face_file(cubemap, "posx").empty()) continue;
       performer::render::Renderer renderer(context, c, settings);
       const performer::render::Camera camera = performer::render::frame_figure(
           centre, lo.y + (centre.y - (lo.y + hi.y) / 2), hi.y - lo.y, glm::vec3(0, 0, 1), float(w) / float(h));

@@ -16,8 +16,11 @@ namespace {
 
 using testmatrix::Shape;
 
+// Made once and never destroyed. As a plain static it was destroyed by exit(), and on an NVIDIA H200
+// (driver 580.159.04) its GL calls there jumped to an address no longer mapped: every test passed,
+// then SIGSEGV (cuda-gdb: exit -> this destructor -> ??). GL objects do not belong in statics.
 dwt_gpu::GpuBackend& gpu() {
-  static dwt_gpu::GpuBackend backend;
+  static dwt_gpu::GpuBackend& backend = *new dwt_gpu::GpuBackend;
   static const bool announced = [] {
     std::printf("GL renderer: %s\n", backend.renderer().c_str());
     return true;

@@ -2,11 +2,16 @@
 // (Mesa llvmpipe is enough); platform-specific cases skip when unavailable.
 #include "glcontext/context.h"
 #include "glcontext/error.h"
+#include "glcontext/gpu_fingerprint.h"
 #include "glcontext/resources.h"
 
 #include <gtest/gtest.h>
 
+#include "support/scratch_dir.h"
+
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -473,3 +478,49 @@ void main() { a = 1.0; b = 2.0; }
 }
 
 }  // namespace
+
+// The key of --dwt auto's cost cache, read from made-up /dev, /proc and /sys trees.
+namespace {
+
+struct FakeRoot {
+  test_support::ScratchDir dir{"gpuj2k_fake_root"};
+  const std::filesystem::path& root = dir.path();
+  void write(const std::string& relative, const std::string& text) const {
+    const std::filesystem::path file = root / relative;
+    std::filesystem::create_directories(file.parent_path());
+    std::ofstream(file) << text;
+  }
+};
+
+}  // namespace
+
+TEST(GpuFingerprint, NoDeviceNodeMeansNoHardwareGpu) {
+  FakeRoot fake;
+  fake.write("proc/sys/kernel/osrelease", "6.1.0-28-amd64\n");
+  EXPECT_EQ(glc::hardware_gpu_fingerprint(fake.root), "");
+}
+
+TEST(GpuFingerprint, NvidiaDriverVersionAndModels) {
+  FakeRoot fake;
+  fake.write("dev/nvidia0", "");
+  fake.write("proc/driver/nvidia/version",
+             "NVRM version: NVIDIA UNIX x86_64 Kernel Module  580.159.04  Tue Oct 14 2025\nGCC version: gcc 12\n");
+  fake.write("proc/driver/nvidia/gpus/0000:00:05.0/information", "Model: \t\t NVIDIA H200\nIRQ: 42\n");
+  EXPECT_EQ(glc::hardware_gpu_fingerprint(fake.root), "nvidia 580.159.04: NVIDIA H200");
+  // A driver update is another key, so the costs are measured again.
+  fake.write("proc/driver/nvidia/version", "NVRM version: NVIDIA UNIX x86_64 Kernel Module  590.10  Mon Jan 5 2026\n");
+  EXPECT_EQ(glc::hardware_gpu_fingerprint(fake.root), "nvidia 590.10: NVIDIA H200");
+}
+
+TEST(GpuFingerprint, DrmRenderNodesWithTheirDeviceAndDriver) {
+  FakeRoot fake;
+  fake.write("dev/dri/card0", "");
+  fake.write("dev/dri/renderD128", "");
+  fake.write("sys/class/drm/renderD128/device/vendor", "0x1002\n");
+  fake.write("sys/class/drm/renderD128/device/device", "0x744c\n");
+  std::filesystem::create_directories(fake.root / "sys/bus/pci/drivers/amdgpu");
+  std::filesystem::create_symlink(fake.root / "sys/bus/pci/drivers/amdgpu",
+                                  fake.root / "sys/class/drm/renderD128/device/driver");
+  fake.write("proc/sys/kernel/osrelease", "6.1.0-28-amd64\n");
+  EXPECT_EQ(glc::hardware_gpu_fingerprint(fake.root), "drm renderD128 0x1002:0x744c amdgpu; kernel 6.1.0-28-amd64");
+}

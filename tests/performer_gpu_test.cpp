@@ -404,7 +404,8 @@ TEST(Renderer, FrameShowsTheGltfAvatarWhereTheCpuMeshProjects) {
 // levels of rounding, filtering and multisampling.
 TEST(Renderer, EnvironmentShowsEachCubeFaceTheRightWayRound) {
   const fs::path dir = test_support::shared_dir() / "assets" / "cubemap";
-  REQUIRE_SHARED_FILE(dir / "posx.jpg");
+  const fs::path posx = performer::render::cubemap_face_file(dir, "posx");
+  REQUIRE_SHARED_FILE(posx.empty() ? dir / "posx.jpg" : posx);
   REQUIRE_SHARED_FILE(test_support::bvh_asset("cmu_131_01.bvh"));
   const Cmu& m = cmu("cmu_131_01.bvh");
   constexpr int kS = 64;
@@ -427,7 +428,7 @@ TEST(Renderer, EnvironmentShowsEachCubeFaceTheRightWayRound) {
     camera.vertical_fov = 1.5707964f;
     renderer.render_environment(camera);
     renderer.read_rgb(rgb);
-    const imageio::Image face = imageio::read_image((dir / (std::string(f.name) + ".jpg")).string());
+    const imageio::Image face = imageio::read_image(performer::render::cubemap_face_file(dir, f.name).string());
     // Means over quadrants (top-left, top-right, bottom-left, bottom-right), RGB, 0..255.
     auto quadrants_of = [](auto&& at, int w, int h) {
       std::array<glm::dvec3, 4> sum{};

@@ -10,6 +10,7 @@
 #include "dwt_cpu/cpu_backend.h"
 #include "dwt_gpu/gpu_backend.h"
 #include "glcontext/context.h"
+#include "glcontext/gpu_fingerprint.h"
 
 namespace codec {
 namespace {
@@ -93,8 +94,11 @@ std::optional<DwtCosts> load_dwt_costs(const std::filesystem::path& cache, const
     std::istringstream fields(line.substr(tab + 1));
     DwtCosts c;
     if (fields >> c.cpu_ns_per_sample >> c.gpu_setup_ms >> c.gpu_ns_per_sample && c.cpu_ns_per_sample > 0 &&
-        c.gpu_ns_per_sample > 0 && c.gpu_setup_ms >= 0)
+        c.gpu_ns_per_sample > 0 && c.gpu_setup_ms >= 0) {
+      std::getline(fields >> std::ws, c.renderer);
+      if (c.renderer.empty()) c.renderer = "the cached GPU";
       return c;
+    }
   }
   return std::nullopt;
 }
@@ -111,7 +115,7 @@ void store_dwt_costs(const std::filesystem::path& cache, const std::string& key,
       if (line.compare(0, k.size() + 1, k + '\t') != 0) kept.push_back(line);
   }
   kept.push_back(k + '\t' + std::to_string(costs.cpu_ns_per_sample) + '\t' + std::to_string(costs.gpu_setup_ms) + '\t' +
-                 std::to_string(costs.gpu_ns_per_sample));
+                 std::to_string(costs.gpu_ns_per_sample) + '\t' + clean_key(costs.renderer));
   std::filesystem::path temporary = cache;
   temporary += ".tmp" + std::to_string(static_cast<long long>(Clock::now().time_since_epoch().count()));
   {
@@ -124,6 +128,35 @@ void store_dwt_costs(const std::filesystem::path& cache, const std::string& key,
   }
   std::filesystem::rename(temporary, cache, ec);
   if (ec) std::filesystem::remove(temporary, ec);
+}
+
+std::string dwt_cost_key(const std::string& gpu_fingerprint, const std::string& cpu_name) {
+  return gpu_fingerprint + " | " + cpu_name;
+}
+
+namespace {
+
+std::string prediction(const DwtCosts& costs, double samples, bool measured_now) {
+  const double gpu_ms = costs.gpu_setup_ms + costs.gpu_ns_per_sample * samples * 1e-6;
+  const double cpu_ms = costs.cpu_ns_per_sample * samples * 1e-6;
+  return "predicted " + fixed(gpu_ms, 1) + " ms on " + costs.renderer + " against " + fixed(cpu_ms, 1) +
+         " ms on the CPU (costs " + (measured_now ? "measured now" : "from the cache") + ")";
+}
+
+}  // namespace
+
+std::optional<std::string> cpu_wins_by_cached_costs(const std::optional<std::filesystem::path>& cache,
+                                                    const std::string& key, double samples) {
+  if (!cache) return std::nullopt;
+  const std::optional<DwtCosts> costs = load_dwt_costs(*cache, key);
+  if (!costs || gpu_pays_off(*costs, samples)) return std::nullopt;
+  return "the CPU is faster here: " + prediction(*costs, samples, false) + ", so no GL context was made";
+}
+
+std::optional<std::string> cpu_wins_here_by_cached_costs(const std::string& cpu_name, double samples) {
+  const std::string gpus = glc::hardware_gpu_fingerprint();
+  if (gpus.empty()) return std::nullopt;
+  return cpu_wins_by_cached_costs(dwt_cost_cache_path(), dwt_cost_key(gpus, cpu_name), samples);
 }
 
 // --dwt gpu: any renderer, software ones included.
@@ -154,13 +187,14 @@ MadeGpu make_hardware_gpu(dwt::DwtBackend& cpu) {
   const auto compile_start = Clock::now();
   made.gpu = std::make_unique<dwt_gpu::GpuBackend>(std::move(context));
   made.compile_ms = ms_since(compile_start);
-  const std::string key = renderer + " | " + cpu.name();
+  const std::string key = dwt_cost_key(glc::hardware_gpu_fingerprint(), cpu.name());
   const auto cache = dwt_cost_cache_path();
   made.costs = cache ? load_dwt_costs(*cache, key) : std::nullopt;
   made.costs_measured_now = !made.costs;
   if (!made.costs) {
     const auto calibration_start = Clock::now();
     made.costs = calibrate_dwt(cpu, *made.gpu, made.compile_ms);
+    made.costs->renderer = renderer;
     made.calibration_ms = ms_since(calibration_start);
     if (cache) store_dwt_costs(*cache, key, *made.costs);
   }
@@ -202,19 +236,19 @@ DwtChoice settle_dwt(DwtDevice device, GpuCandidate candidate, std::unique_ptr<d
   // Auto: a hardware GPU, and only where it is faster.
   if (!candidate.backend || !candidate.costs)
     return cpu_choice(std::move(cpu), candidate.failure + "; the 9/7 runs on the CPU");
-  const DwtCosts& costs = *candidate.costs;
-  const double gpu_ms = costs.gpu_setup_ms + costs.gpu_ns_per_sample * samples * 1e-6;
-  const double cpu_ms = costs.cpu_ns_per_sample * samples * 1e-6;
-  const std::string prediction = "predicted " + fixed(gpu_ms, 1) + " ms on " + candidate.renderer + " against " +
-                                 fixed(cpu_ms, 1) + " ms on the CPU (costs " +
-                                 (candidate.costs_measured_now ? "measured now" : "from the cache") + ")";
-  if (gpu_pays_off(costs, samples)) return gpu_choice(candidate, "the GPU is faster here: " + prediction);
-  return cpu_choice(std::move(cpu), "the CPU is faster here: " + prediction);
+  DwtCosts costs = *candidate.costs;
+  costs.renderer = candidate.renderer;
+  const std::string predicted = prediction(costs, samples, candidate.costs_measured_now);
+  if (gpu_pays_off(costs, samples)) return gpu_choice(candidate, "the GPU is faster here: " + predicted);
+  return cpu_choice(std::move(cpu), "the CPU is faster here: " + predicted);
 }
 
 DwtChoice choose_dwt(DwtDevice device, double samples, base::ThreadPool& pool) {
   auto cpu = std::make_unique<dwt_cpu::CpuBackend>(pool);
   if (device == DwtDevice::Cpu) return cpu_choice(std::move(cpu), "asked for the CPU");
+  if (device == DwtDevice::Auto)
+    if (auto reason = cpu_wins_here_by_cached_costs(cpu->name(), samples))
+      return cpu_choice(std::move(cpu), std::move(*reason));
   MadeGpu made = device == DwtDevice::Auto ? make_hardware_gpu(*cpu) : make_any_gpu();
   GpuCandidate candidate;
   candidate.failure = made.failure;

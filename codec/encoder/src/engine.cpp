@@ -62,6 +62,10 @@ DwtChoice choose_dwt(const EncodeParams& params, double samples, base::ThreadPoo
     choice = choose_dwt(params.dwt, samples, pool);
   } else {
     auto cpu = std::make_unique<dwt_cpu::CpuBackend>(pool);
+    // As without an engine: where the cache gives the image to the CPU, no context is made.
+    if (params.dwt == DwtDevice::Auto)
+      if (auto reason = cpu_wins_here_by_cached_costs(cpu->name(), samples))
+        return cpu_choice(std::move(cpu), std::move(*reason));
     DwtChoice times;
     GpuCandidate candidate = engine_gpu(*params.engine, params.dwt == DwtDevice::Auto, *cpu, times);
     choice = settle_dwt(params.dwt, std::move(candidate), std::move(cpu), samples);

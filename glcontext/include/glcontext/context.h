@@ -48,7 +48,9 @@ class Backend;
 // to gl(), so the Context must stay at one address; hold it by unique_ptr.
 // Destroy every resource before its Context, and destroy a Context on the
 // thread where it is current (or after release_current() on every other
-// thread). Contexts of different platforms may coexist in one process:
+// thread). Never keep GL resources (textures, programs, a dwt_gpu::GpuBackend) in a static object:
+// with NVIDIA's driver the GL calls their destructors make inside exit() crash (seen on an H200).
+// Contexts of different platforms may coexist in one process:
 // make_current() switches correctly between EGL and OSMesa ones.
 class Context {
  public:

@@ -23,23 +23,27 @@ constexpr int kHairShells = 16;
 constexpr float kHairStrandsPerMetre = 420.0f;
 constexpr GLuint kHairAttribute = 2;
 
+}  // namespace
+
+std::filesystem::path cubemap_face_file(const std::filesystem::path& dir, const std::string& face) {
+  for (const char* ext : {".jpg", ".png", ".ppm"})
+    if (const std::filesystem::path candidate = dir / (face + ext); std::filesystem::exists(candidate))
+      return candidate;
+  return {};
+}
+
+namespace {
+
 // The six faces in GL's order (+X, -X, +Y, -Y, +Z, -Z).
 glc::Texture load_cubemap(const glc::GlApi& gl, const std::filesystem::path& dir) {
   static constexpr std::array<const char*, 6> kFaces = {"posx", "negx", "posy", "negy", "posz", "negz"};
   glc::Texture texture = glc::Texture::create(gl);
   gl.glBindTexture(GL_TEXTURE_CUBE_MAP, texture.id());
   for (int f = 0; f < 6; ++f) {
-    std::filesystem::path file;
-    for (const char* ext : {".jpg", ".png"}) {
-      const std::filesystem::path candidate = dir / (std::string(kFaces[static_cast<std::size_t>(f)]) + ext);
-      if (std::filesystem::exists(candidate)) {
-        file = candidate;
-        break;
-      }
-    }
+    const std::filesystem::path file = cubemap_face_file(dir, kFaces[static_cast<std::size_t>(f)]);
     if (file.empty())
       throw std::invalid_argument("cube map: no " + std::string(kFaces[static_cast<std::size_t>(f)]) +
-                                  ".jpg or .png in " + dir.string());
+                                  ".jpg, .png or .ppm in " + dir.string());
     const imageio::Image image = imageio::read_image(file.string());
     if (image.width != image.height || image.channels < 3)
       throw std::invalid_argument("cube map face " + file.string() + ": expected a square RGB image, got " +

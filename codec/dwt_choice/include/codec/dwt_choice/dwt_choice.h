@@ -27,6 +27,7 @@ struct DwtCosts {
   double cpu_ns_per_sample = 0;  // CPU lifting with the coder's threads
   double gpu_setup_ms = 0;       // once per image on an existing context: shader, first textures
   double gpu_ns_per_sample = 0;  // upload, render passes, download
+  std::string renderer;          // the GPU they were measured on (GL_RENDERER and version), for reports
 };
 
 // The GPU is used when its setup plus per-sample cost beat the CPU on `samples` (all components).
@@ -36,11 +37,14 @@ bool gpu_pays_off(const DwtCosts& costs, double samples);
 // Times both backends on a 1024x1024 plane (twice each; the GPU's first run counts towards setup).
 DwtCosts calibrate_dwt(dwt::DwtBackend& cpu, dwt_gpu::GpuBackend& gpu, double gpu_compile_ms);
 
-// A small text cache of calibrations, one line per key (renderer, CPU backend, threads):
-// $GPUJ2K_CACHE_DIR, else $XDG_CACHE_HOME/gpuj2k, else $HOME/.cache/gpuj2k, file dwt-costs.tsv.
-// Reading a missing or damaged cache gives nothing; writing is best effort (temporary file, then
-// rename), since a read-only home must not fail an encode or a decode.
+// A small text cache of calibrations, one line per key (the GPUs, the CPU backend and its threads),
+// then the three costs and the renderer: $GPUJ2K_CACHE_DIR, else $XDG_CACHE_HOME/gpuj2k, else
+// $HOME/.cache/gpuj2k, file dwt-costs.tsv. Reading a missing or damaged cache gives nothing; writing
+// is best effort (temporary file, then rename), since a read-only home must not fail an encode or a
+// decode.
 std::optional<std::filesystem::path> dwt_cost_cache_path();
+// The key: glc::hardware_gpu_fingerprint(), which needs no GL context, and the CPU backend's name.
+std::string dwt_cost_key(const std::string& gpu_fingerprint, const std::string& cpu_name);
 std::optional<DwtCosts> load_dwt_costs(const std::filesystem::path& cache, const std::string& key);
 void store_dwt_costs(const std::filesystem::path& cache, const std::string& key, const DwtCosts& costs);
 
@@ -76,6 +80,14 @@ struct GpuCandidate {
   std::optional<DwtCosts> costs;
   bool costs_measured_now = false;
 };
+
+// --dwt auto before any GL context: where `cache` holds costs for `key` and they give `samples` to
+// the CPU, the reason to say so; else nothing (no costs yet, or the GPU would win), and the context
+// is made. On an NVIDIA H200 a context costs some 60-70 ms, twice a 2048x2048 encode's CPU DWT.
+std::optional<std::string> cpu_wins_by_cached_costs(const std::optional<std::filesystem::path>& cache,
+                                                    const std::string& key, double samples);
+// The same on this machine: its GPUs (none: nothing), `cpu_name` and the cache in its usual place.
+std::optional<std::string> cpu_wins_here_by_cached_costs(const std::string& cpu_name, double samples);
 
 // The CPU for `reason`.
 DwtChoice cpu_choice(std::unique_ptr<dwt::DwtBackend> cpu, std::string reason);

@@ -22,9 +22,13 @@ struct RenderSettings {
   int height = 480;
   int samples = 4;  // multisampling; clamped to what the driver offers
   Effects effects;
-  // posx, negx, posy, negy, posz, negz (.jpg or .png) for the environment effect.
+  // posx, negx, posy, negy, posz, negz (.jpg, .png or .ppm) for the environment effect.
   std::filesystem::path cubemap_dir;
 };
+
+// The file of cube map face `face` ("posx", ...) in `dir`: the first of .jpg, .png and .ppm there
+// (PPM conversions serve where OpenImageIO, which reads JPEG and PNG, is absent); empty if none.
+std::filesystem::path cubemap_face_file(const std::filesystem::path& dir, const std::string& face);
 
 class Renderer {
  public:
