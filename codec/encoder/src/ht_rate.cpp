@@ -95,6 +95,7 @@ double bytes_per_model_bit(const CodedTile& coded, const std::vector<std::size_t
     const int cut = taken == 0 ? points.bit_planes - 1 : c.point(hull[taken - 1].passes).plane;
     for (int p = std::max(0, cut - 2); p <= std::min(points.bit_planes - 1, cut + 2); ++p) {
       const auto& candidate = c.by_plane[static_cast<std::size_t>(p)];
+      if (!candidate) continue;  // a plane the two-step sample left out
       const ht::PlaneStatistics& s = stats[k][static_cast<std::size_t>(p)];
       bytes += static_cast<double>(candidate->passes[0].length);  // the cleanup's, which the model estimates
       bits += model_bits(s);
@@ -109,33 +110,74 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
                         const std::function<void()>& block_done) {
   const std::size_t n = coded.jobs.size();
   coded.ht_candidates.assign(n, HtCandidates{});
-  // Every plane of the listed blocks; their statistics kept when asked for.
-  auto code_every_plane = [&](const std::vector<std::size_t>& which,
-                              std::vector<std::vector<ht::PlaneStatistics>>* stats) {
+  // The cleanups of the listed blocks from the planes `planes_of` names (given the block's plane
+  // statistics), with their truncation points; the statistics are kept where asked for. A block
+  // coded again keeps what it had and gains the planes it lacked.
+  using PlanesOf = std::function<std::vector<int>(std::size_t block, const std::vector<ht::PlaneStatistics>&)>;
+  auto code_planes = [&](const std::vector<std::size_t>& which, const PlanesOf& planes_of,
+                         std::vector<std::vector<ht::PlaneStatistics>>* stats) {
     if (stats) stats->assign(which.size(), {});
     pool.parallel_for(which.size(), [&](std::size_t k) {
       const std::size_t b = which[k];
       const ht::HtBlock block = load_ht_block(coded, coded.jobs[b], params);
       std::vector<ht::PlaneStatistics> s = ht::plane_statistics(block);
-      const std::vector<int> planes = planes_between(0, block.bit_planes - 1);
-      add_candidates(coded.ht_candidates[b], block, planes, ht_passes(params));
+      add_candidates(coded.ht_candidates[b], block, planes_of(b, s), ht_passes(params));
       coded.blocks[b] = truncation_points(coded.ht_candidates[b], block.bit_planes, s.back().error);
       if (stats) (*stats)[k] = std::move(s);
-      block_done();
     });
+  };
+  const PlanesOf every_plane = [](std::size_t, const std::vector<ht::PlaneStatistics>& s) {
+    return planes_between(0, static_cast<int>(s.size()) - 2);
   };
   std::vector<std::size_t> all(n);
   for (std::size_t i = 0; i < n; ++i) all[i] = i;
   if (target.kind == Tier1Target::Kind::None || target.value <= 0 || n < 64) {
-    code_every_plane(all, nullptr);
+    code_planes(all, every_plane, nullptr);
+    for (std::size_t i = 0; i < n; ++i) block_done();
     return;
   }
+  // The sample predicts the threshold in two steps, as EBCOT's pass skipping does (tile_coder.h):
+  // the sparser presample is coded from every plane and gives a first estimate; the rest of the
+  // sample is coded from its top plane down to the plane the length model puts at an eighth of
+  // that estimate, and one more. Its lowest planes, the costliest cleanups (the most significant
+  // samples), are left out. Should the prediction fall within reach of where those blocks stop,
+  // they are coded from every plane after all and it is made again.
   const BlockSample sample = sample_blocks(coded.jobs, kSampleStride);
-  std::vector<std::vector<ht::PlaneStatistics>> sample_stats;
-  code_every_plane(sample.blocks, &sample_stats);
-  const double threshold = predict_threshold(coded.jobs, coded, sample, target);
+  const BlockSample presample = sample_blocks(coded.jobs, kPresampleStride);
+  std::vector<bool> in_presample(n);
+  for (std::size_t i : presample.blocks) in_presample[i] = true;
+  std::vector<std::size_t> sample_rest;
+  for (std::size_t i : sample.blocks)
+    if (!in_presample[i]) sample_rest.push_back(i);
+  std::vector<std::vector<ht::PlaneStatistics>> presample_stats, rest_stats;
+  code_planes(presample.blocks, every_plane, &presample_stats);
+  const double first_estimate = predict_threshold(coded.jobs, coded, presample, target);
+  const double first_bytes_per_bit = bytes_per_model_bit(coded, presample.blocks, presample_stats, first_estimate);
+  const double reach = first_estimate / kPresampleMargin;
+  code_planes(
+      sample_rest,
+      [&](std::size_t b, const std::vector<ht::PlaneStatistics>& s) {
+        const int top = static_cast<int>(s.size()) - 2;
+        if (top < 0) return std::vector<int>{};
+        const int cut = estimated_plane(s, coded.jobs[b].weight, reach, first_bytes_per_bit);
+        return planes_between(cut < 0 ? top : std::max(0, cut - 1), top);
+      },
+      &rest_stats);
+  double threshold = predict_threshold(coded.jobs, coded, sample, target);
+  if (threshold < first_estimate / (kPresampleMargin / 2)) {
+    code_planes(sample_rest, every_plane, nullptr);
+    threshold = predict_threshold(coded.jobs, coded, sample, target);
+  }
   coded.stop_threshold = threshold;
+  // The sample's statistics in its order, for the length model's scale.
+  std::vector<std::vector<ht::PlaneStatistics>> sample_stats;
+  {
+    std::size_t next_presample = 0, next_rest = 0;
+    for (std::size_t i : sample.blocks)
+      sample_stats.push_back(std::move(in_presample[i] ? presample_stats[next_presample++] : rest_stats[next_rest++]));
+  }
   const double bytes_per_bit = bytes_per_model_bit(coded, sample.blocks, sample_stats, threshold);
+  for (std::size_t i = 0; i < sample.blocks.size(); ++i) block_done();
 
   std::vector<bool> in_sample(n);
   for (std::size_t i : sample.blocks) in_sample[i] = true;
