@@ -120,7 +120,7 @@ class PnmSink : public codec::SampleSink {
     SampleSink::put_rows012(x, y, c0, c1, c2);
   }
 
-  void write() const {
+  void write() {
     if (raster_)
       raster_->write();
     else

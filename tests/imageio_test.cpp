@@ -353,15 +353,20 @@ TEST_F(ImageIoTest, PnmRasterWritesWhatWritePnmWrites) {
         }
       }
 
-  imageio::PnmRaster unput(path("unput.pgm"), 3, 2, 1, 8);
+  // Row 0 never put, row 1 in full, row 2 only its last two pixels: the rest is 0, also where the
+  // raster's memory was used before (a freed block of its size is what malloc hands out next).
+  const std::string unput_path = path("unput.pgm");
+  { const std::vector<std::uint8_t> dirty(pnm_header("P5", 3, 3, 255).size() + 9, 0xAB); }
+  imageio::PnmRaster unput(unput_path, 3, 3, 1, 8);
   const std::vector<std::int32_t> row{7, 8, 9};
   unput.put_row(0, 0, 1, row);
+  unput.put_row(0, 1, 2, std::span(row).first(2));
   EXPECT_THROW(unput.put_row(0, 1, 1, row), imageio::IoError);  // pixels 1..3 of a 3-pixel row
-  EXPECT_THROW(unput.put_row(0, 0, 2, row), imageio::IoError);  // row 2 of 2
+  EXPECT_THROW(unput.put_row(0, 0, 3, row), imageio::IoError);  // row 3 of 3
   EXPECT_THROW(unput.put_row(1, 0, 0, row), imageio::IoError);  // channel 1 of a grey image
   unput.write();
   EXPECT_EQ(bytes_of(read_bytes(path("unput.pgm"))),
-            pnm_header("P5", 3, 2, 255) + std::string("\0\0\0\x07\x08\x09", 6));
+            pnm_header("P5", 3, 3, 255) + std::string("\0\0\0\x07\x08\x09\0\x07\x08", 9));
 }
 
 TEST_F(ImageIoTest, Pnm16BitSamplesAreBigEndian) {
