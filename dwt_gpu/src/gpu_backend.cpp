@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <cstring>
 #include <string>
 #include <utility>
 
@@ -35,6 +37,9 @@ struct GpuBackend::State {
   // A second plane's coefficients, kept while the first is transformed (process_bands).
   glc::Texture held;
   glc::Framebuffer held_target;
+  // The pixel buffer planes are uploaded through, and its size in bytes.
+  glc::Buffer upload_buffer;
+  std::size_t upload_bytes = 0;
 };
 
 GpuBackend::GpuBackend(glc::Platform platform, bool eager) : platform_(platform) {
@@ -181,15 +186,44 @@ void GpuBackend::begin(const dwt::DwtParams& params, int width, int height) {
   if (!s.held) make(s.held, s.held_target);
 }
 
+// Through a pixel buffer, mapped and filled here, from which the texture is then filled on the GPU's
+// side. From client memory, NVIDIA's driver copied a float plane at 2.3 GB/s on an H200 (29 ms for a
+// 4096x4096 plane; README, "On an NVIDIA H200").
 void GpuBackend::upload(dwt::PlaneSpan<const float> plane) {
   State& s = *state_;
   const glc::GlApi& gl = s.context->gl();
+  const std::size_t row_bytes = static_cast<std::size_t>(plane.width) * sizeof(float);
+  const std::size_t bytes = row_bytes * static_cast<std::size_t>(plane.height);
+  if (!s.upload_buffer || s.upload_bytes < bytes) {
+    s.upload_buffer = glc::Buffer::create(gl, GL_PIXEL_UNPACK_BUFFER, bytes, nullptr, GL_STREAM_DRAW);
+    s.upload_bytes = bytes;
+  }
+  gl.glBindBuffer(GL_PIXEL_UNPACK_BUFFER, s.upload_buffer.id());
+  void* mapped = gl.glMapBufferRange(GL_PIXEL_UNPACK_BUFFER, 0, static_cast<GLsizeiptr>(bytes),
+                                     GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT);
+  if (mapped == nullptr) {
+    gl.glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    glc::check(gl, "mapping the upload buffer");
+    throw glc::GlError("mapping the upload buffer gave no memory");
+  }
+  auto* out = static_cast<std::uint8_t*>(mapped);
+  for (int y = 0; y < plane.height; ++y)
+    std::memcpy(out + static_cast<std::size_t>(y) * row_bytes,
+                plane.data + static_cast<std::ptrdiff_t>(y) * plane.stride, row_bytes);
+  // False only where the buffer's contents were lost meanwhile (a display mode change): upload again.
+  const bool intact = gl.glUnmapBuffer(GL_PIXEL_UNPACK_BUFFER) == GL_TRUE;
   gl.glActiveTexture(GL_TEXTURE0);
   gl.glBindTexture(GL_TEXTURE_2D, s.planes[0].id());
   gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  gl.glPixelStorei(GL_UNPACK_ROW_LENGTH, static_cast<GLint>(plane.stride));
-  gl.glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, plane.width, plane.height, GL_RED, GL_FLOAT, plane.data);
-  gl.glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+  if (intact) {
+    gl.glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, plane.width, plane.height, GL_RED, GL_FLOAT, nullptr);
+    gl.glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  } else {
+    gl.glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    gl.glPixelStorei(GL_UNPACK_ROW_LENGTH, static_cast<GLint>(plane.stride));
+    gl.glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, plane.width, plane.height, GL_RED, GL_FLOAT, plane.data);
+    gl.glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+  }
   glc::check(gl, "uploading the plane");
   gl.glFinish();
 }
