@@ -11,8 +11,9 @@ cd "$(dirname "$0")/.."
 seconds="${FUZZ_SECONDS:-30}"
 dir=build-fuzz
 # The seeds' encoder and image generator: FUZZ_SEED_BIN's (a folder of j2kenc and gentestimage that
-# another build made; the CI job passes its Release build's), else built here. -O1 with line tables
-# only, as the sanitizer suite: the build is most of this script's time.
+# another build made; the CI job passes the installed tools of its codec-alone Release build), else
+# built here. -O1 with line tables only, as the sanitizer suite: the build is most of this script's
+# time.
 seed_bin="${FUZZ_SEED_BIN:-}"
 CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DGPUJ2K_FUZZ=ON >/dev/null
