@@ -172,11 +172,11 @@ TEST(J2kHt, CodeBlockSizes) {
 }
 
 // Signed samples: opj_decompress and grk_decompress write PGX, which both must match exactly.
-// ojph_expand writes raw little-endian samples, and there an open question remains: it writes our
-// negative samples as 0 (at 8, 12 and 16 bits, on any level count, also with 1 guard bit) while it
-// writes those of ojph_compress's own stream of the same samples, whose headers differ from ours
-// only in the QCD exponents and guard bits (OpenJPH uses 2 more) and Ccap15's MAGB. Until that is
-// understood, OpenJPH must match every non-negative sample and give 0 for the negative ones.
+// ojph_expand has no signed output: OpenJPH 0.9.0's raw/yuv writer (yuv_out::write in
+// src/apps/others/ojph_img_io.cpp) clamps every sample to 0..2^B - 1, so our negative samples come
+// out as 0. Its own signed streams seemed to keep theirs only because its raw reader (yuv_in::read)
+// zero-extends the file's samples: nothing negative was ever coded. OpenJPH must match every
+// non-negative sample and give 0 for the negative ones.
 std::vector<std::int32_t> read_pgx(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::string pg, ml, sign;
