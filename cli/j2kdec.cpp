@@ -24,6 +24,7 @@
 #include "base/one_line.h"
 #include "file_names.h"
 #include "timing.h"
+#include "quiet_stderr.h"
 
 namespace {
 
@@ -48,7 +49,10 @@ void write_pgx(const std::string& path, const codec::DecodedImage& img) {
     imageio::write_bytes_atomically(stem + "_" + std::to_string(c) + ".pgx", pgx_bytes(img.components[c]));
 }
 
-void write_other(const std::string& path, const codec::DecodedImage& img) {
+// Writes `img` through OpenImageIO with its ICC profile, if any. A writer may refuse a JP2 file's
+// profile (libpng checks its header): the image is then written without it, and the returned line
+// says so. Empty when all went as asked.
+std::string write_other(const std::string& path, const codec::DecodedImage& img) {
   const auto& c0 = img.components.at(0);
   int channels = static_cast<int>(img.components.size());
   for (int c = 1; c < channels; ++c) {
@@ -65,6 +69,7 @@ void write_other(const std::string& path, const codec::DecodedImage& img) {
   out.channels = channels;
   out.bits_per_sample = c0.precision;
   out.is_signed = c0.is_signed;
+  out.icc_profile = img.icc_profile;
   out.pixels.resize(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) *
                     static_cast<std::size_t>(channels));
   for (int c = 0; c < channels; ++c) {
@@ -72,7 +77,15 @@ void write_other(const std::string& path, const codec::DecodedImage& img) {
     for (std::size_t i = 0; i < s.size(); ++i)
       out.pixels[i * static_cast<std::size_t>(channels) + static_cast<std::size_t>(c)] = static_cast<float>(s[i]);
   }
-  imageio::write_image(path, out);
+  try {
+    imageio::write_image(path, out);
+  } catch (const imageio::IoError& e) {
+    if (out.icc_profile.empty()) throw;
+    out.icc_profile.clear();
+    imageio::write_image(path, out);
+    return "its ICC colour profile was refused by the writer and is not in " + path + " (" + e.what() + ")";
+  }
+  return {};
 }
 
 bool is_pnm_path(const std::string& path) {
@@ -124,7 +137,7 @@ class PnmSink : public codec::SampleSink {
     if (raster_)
       raster_->write();
     else
-      write_other(path_, image_);
+      write_other(path_, image_);  // PNM: no profile (j2kdec says so before writing)
   }
 
  private:
@@ -252,14 +265,22 @@ int main(int argc, char** argv) {
     if (!quiet)
       for (const std::string& w : image.warnings)
         std::fprintf(stderr, "j2kdec: %s: warning: %s\n", input.c_str(), base::one_line(w).c_str());
+    if (!quiet && !image.icc_profile.empty() && (pnm || ext == ".pgx"))
+      std::fprintf(stderr,
+                   "j2kdec: %s: warning: its ICC colour profile (%zu bytes) is not written: %s files cannot carry "
+                   "one (TIFF and PNG can)\n",
+                   input.c_str(), image.icc_profile.size(), pnm ? "PNM" : "PGX");
     const auto write_start = Clock::now();
+    std::string write_note;  // what the writer left out, said once stderr is ours again
     try {
+      // libpng inside OpenImageIO prints its own lines; j2kdec says what went wrong itself.
+      const cli::QuietStderr quiet_libraries;
       if (pnm)
         pnm->write();
       else if (ext == ".pgx")
         write_pgx(output, image);
       else
-        write_other(output, image);
+        write_note = write_other(output, image);
     } catch (const imageio::IoError& e) {
       std::fprintf(stderr, "j2kdec: %s\n", base::one_line(e.what()).c_str());
       return 1;
@@ -267,6 +288,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "j2kdec: %s: %s\n", output.c_str(), base::one_line(e.what()).c_str());
       return 1;
     }
+    if (!write_note.empty() && !quiet)
+      std::fprintf(stderr, "j2kdec: %s: warning: %s\n", input.c_str(), base::one_line(write_note).c_str());
     const double output_ms = since(write_start);
     const double ms = since(t0);
     if (!timing.empty()) print_timing(timing, report, output_ms, ms);

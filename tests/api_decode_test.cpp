@@ -15,6 +15,7 @@
 #include "gpuj2k/decoder.h"
 #include "gpuj2k/encoder.h"
 #include "support/external_decode.h"
+#include "support/jp2_boxes.h"
 #include "support/scratch_dir.h"
 #include "testimages/patterns.h"
 
@@ -120,6 +121,16 @@ TEST(ApiDecode, IntoCallerBuffersOfEveryLayout) {
 }
 
 // read_info tells from the headers what decode gives, with reduce, a region and a selection.
+// A JP2 file's ICC profile reaches the caller, from read_info and from decode.
+TEST(ApiDecode, IccProfileReachesTheCaller) {
+  const Encoded e = encode_lossless(16, 8, 3, 8);
+  const std::vector<std::uint8_t> profile = test_support::made_up_icc_profile(200);
+  const auto file = test_support::jp2_file(e.j2k, {test_support::box("colr", test_support::icc_colr(profile))});
+  EXPECT_EQ(gpuj2k::read_info(file.data(), file.size()).icc_profile, profile);
+  EXPECT_EQ(gpuj2k::decode(file.data(), file.size()).icc_profile, profile);
+  EXPECT_TRUE(gpuj2k::decode(e.j2k.data(), e.j2k.size()).icc_profile.empty());
+}
+
 TEST(ApiDecode, InfoMatchesTheDecodeAndWindowsMatchTheWhole) {
   const Encoded e = encode_lossless(64, 48, 3, 8);
   const gpuj2k::DecodedImage whole = gpuj2k::decode(e.j2k.data(), e.j2k.size());

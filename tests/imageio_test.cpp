@@ -23,6 +23,7 @@
 #include "imageio/pnm.h"
 #include "imageio/read.h"
 #include "imageio/write.h"
+#include "support/jp2_boxes.h"
 
 namespace fs = std::filesystem;
 
@@ -908,3 +909,20 @@ TEST(IoError, MessageIsOneLine) {
 }
 
 }  // namespace
+
+// An ICC profile travels through the formats that can carry one (j2kdec hands a JP2 file's on).
+TEST_F(ImageIoTest, IccProfileRoundTripsThroughTiffAndPng) {
+  imageio::Image image = make_image(5, 3, 3, 8, false);
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = static_cast<float>((i * 37) % 256);
+  image.icc_profile = test_support::made_up_icc_profile(500);
+  for (const std::string name : {"icc.tif", "icc.png"}) {
+    SCOPED_TRACE(name);
+    imageio::write_image(path(name), image);
+    const imageio::Image back = imageio::read_image(path(name));
+    EXPECT_EQ(back.icc_profile, image.icc_profile);
+    EXPECT_EQ(back.pixels, image.pixels);
+  }
+  image.icc_profile.clear();
+  imageio::write_image(path("none.tif"), image);
+  EXPECT_TRUE(imageio::read_image(path("none.tif")).icc_profile.empty());
+}

@@ -18,6 +18,7 @@
 #include "dwt_gpu/gpu_backend.h"
 #include "imageio/write.h"
 #include "support/option_matrix.h"
+#include "support/jp2_boxes.h"
 #include "support/scratch_dir.h"
 #include "support/shared_assets.h"
 #include "imageio/read.h"
@@ -856,28 +857,8 @@ TEST(J2kDecoderConformance, Jp2FilesMatchTheirTiffReferences) {
   }
 }
 
-// A JP2 file around `codestream` (I.4, I.5): signature, ftyp, jp2h with `header_boxes`, jp2c.
-std::vector<std::uint8_t> box(const char* type, const std::vector<std::uint8_t>& body) {
-  const auto length = static_cast<std::uint32_t>(body.size() + 8);
-  std::vector<std::uint8_t> out(8 + body.size());
-  for (int i = 0; i < 4; ++i) {
-    out[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(length >> (24 - 8 * i));
-    out[static_cast<std::size_t>(4 + i)] = static_cast<std::uint8_t>(type[i]);
-  }
-  std::copy(body.begin(), body.end(), out.begin() + 8);
-  return out;
-}
-
-std::vector<std::uint8_t> jp2_file(const std::vector<std::uint8_t>& codestream,
-                                   const std::vector<std::vector<std::uint8_t>>& header_boxes) {
-  std::vector<std::uint8_t> out{0, 0, 0, 0x0C, 'j', 'P', ' ', ' ', 0x0D, 0x0A, 0x87, 0x0A};
-  for (const auto& b : {box("ftyp", {'j', 'p', '2', ' ', 0, 0, 0, 0, 'j', 'p', '2', ' '})})
-    out.insert(out.end(), b.begin(), b.end());
-  std::vector<std::uint8_t> header;
-  for (const auto& b : header_boxes) header.insert(header.end(), b.begin(), b.end());
-  for (const auto& b : {box("jp2h", header), box("jp2c", codestream)}) out.insert(out.end(), b.begin(), b.end());
-  return out;
-}
+using test_support::box;
+using test_support::jp2_file;
 
 TEST(J2kDecoderJp2, PaletteAndChannelDefinitionsAreApplied) {
   // One 8-bit component of palette indices (only 0..5 are used), then a 6-entry palette of three
@@ -931,6 +912,45 @@ TEST(J2kDecoderJp2, PaletteAndChannelDefinitionsAreApplied) {
       codec::DecodeError);
   EXPECT_THROW((void)codec::decode(jp2_file(stream, {box("colr", colr), box("pclr", pclr)}), options()),
                codec::DecodeError);
+}
+
+// A restricted ICC colr box (I.5.3.3, METH 2): the samples as they are, the profile handed on to
+// the output; a profile that does not fit its box is refused with a line naming it.
+TEST(J2kDecoderJp2, IccProfileIsHandedOn) {
+  const auto stream = encode(image(Pattern::Mix, 21, 13, 3, 8), lossless());
+  const std::vector<std::uint8_t> profile = test_support::made_up_icc_profile(300);
+  const codec::DecodedImage plain = codec::decode(stream, options());
+  const codec::DecodedImage img =
+      codec::decode(jp2_file(stream, {box("colr", test_support::icc_colr(profile))}), options());
+  EXPECT_EQ(img.icc_profile, profile);
+  ASSERT_EQ(img.components.size(), plain.components.size());
+  for (std::size_t c = 0; c < img.components.size(); ++c)
+    EXPECT_EQ(img.components[c].samples, plain.components[c].samples) << "component " << c;
+  EXPECT_EQ(codec::read_header(jp2_file(stream, {box("colr", test_support::icc_colr(profile))}), options()).icc_profile,
+            profile);
+  EXPECT_TRUE(plain.icc_profile.empty());
+
+  // Bytes past the profile's own size are padding, not the profile's.
+  std::vector<std::uint8_t> padded = test_support::icc_colr(profile);
+  padded.insert(padded.end(), {0, 0, 0, 0});
+  EXPECT_EQ(codec::decode(jp2_file(stream, {box("colr", padded)}), options()).icc_profile, profile);
+
+  auto refused = [&](const std::vector<std::uint8_t>& colr, const std::string& says) {
+    try {
+      (void)codec::decode(jp2_file(stream, {box("colr", colr)}), options());
+      ADD_FAILURE() << "accepted: " << says;
+    } catch (const codec::DecodeError& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  };
+  std::vector<std::uint8_t> cut = test_support::icc_colr(profile);
+  cut.resize(cut.size() - 1);  // the profile says 300 bytes, 299 are there
+  refused(cut, "the ICC profile says it is 300 bytes long, and colr holds 299");
+  refused(test_support::icc_colr(std::vector<std::uint8_t>(100, 0)), "less than a profile header");
+  std::vector<std::uint8_t> tiny = test_support::icc_colr(profile);
+  tiny[3 + 2] = 0;  // size 300 -> 44, below a header's 128
+  tiny[3 + 3] = 44;
+  refused(tiny, "the ICC profile says it is 44 bytes long");
 }
 
 // ---- Robustness: truncated and corrupted streams ----

@@ -15,6 +15,8 @@
 
 #include "codec/encoder/encoder.h"
 #include "glcontext/context.h"
+#include "imageio/read.h"
+#include "support/jp2_boxes.h"
 #include "support/scratch_dir.h"
 #include "testimages/patterns.h"
 
@@ -214,3 +216,54 @@ TEST_F(J2kdecCli, BadTimingModeIsOneLine) {
 }
 
 }  // namespace
+
+namespace {
+
+// A JP2 file of the fixture's image with a restricted ICC colr box holding `profile`.
+fs::path jp2_with_profile(const fs::path& stream, const std::vector<std::uint8_t>& profile, const fs::path& file) {
+  const std::string codestream = file_bytes(stream);
+  const auto bytes = test_support::jp2_file(std::vector<std::uint8_t>(codestream.begin(), codestream.end()),
+                                            {test_support::box("colr", test_support::icc_colr(profile))});
+  std::ofstream(file, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  return file;
+}
+
+}  // namespace
+
+// A JP2 file's ICC profile ends up in TIFF and PNG outputs; PNM and PGX cannot carry it, and the
+// user is told; a profile the PNG writer refuses leaves the image written without it, and says so.
+TEST_F(J2kdecCli, IccProfileIsHandedToTheOutput) {
+  const std::vector<std::uint8_t> profile = test_support::made_up_icc_profile(400);
+  const fs::path jp2 = jp2_with_profile(stream, profile, scratch / "icc.jp2");
+  const imageio::Image plain = [&] {
+    EXPECT_EQ(
+        j2kdec("-i '" + stream.string() + "' -o '" + (scratch / "plain.tif").string() + "'", scratch.path()).exit_code,
+        0);
+    return imageio::read_image((scratch / "plain.tif").string());
+  }();
+  for (const std::string name : {"icc.tif", "icc.png"}) {
+    const auto r = j2kdec("-i '" + jp2.string() + "' -o '" + (scratch / name).string() + "'", scratch.path());
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
+    EXPECT_EQ(r.err, "") << name;
+    const imageio::Image out = imageio::read_image((scratch / name).string());
+    EXPECT_EQ(out.icc_profile, profile) << name;
+    EXPECT_EQ(out.pixels, plain.pixels) << name;  // the samples as they are: no colour conversion
+  }
+  for (const std::string name : {"icc.ppm", "icc.pgx"}) {
+    const auto r = j2kdec("-i '" + jp2.string() + "' -o '" + (scratch / name).string() + "'", scratch.path());
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
+    EXPECT_NE(r.err.find("ICC colour profile (400 bytes) is not written"), std::string::npos) << name << ": " << r.err;
+  }
+  std::vector<std::uint8_t> not_d50 = profile;
+  std::fill(not_d50.begin() + 68, not_d50.begin() + 80, std::uint8_t{0});  // libpng checks the PCS illuminant
+  const fs::path refused = jp2_with_profile(stream, not_d50, scratch / "refused.jp2");
+  const auto r =
+      j2kdec("-i '" + refused.string() + "' -o '" + (scratch / "refused.png").string() + "'", scratch.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("refused by the writer"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  const imageio::Image written = imageio::read_image((scratch / "refused.png").string());
+  EXPECT_TRUE(written.icc_profile.empty());
+  EXPECT_EQ(written.pixels, plain.pixels);
+}

@@ -89,6 +89,7 @@ DecodedImage to_public(codec::DecodedImage&& image) {
   out.x1 = image.x1;
   out.y1 = image.y1;
   out.colour_space = image.jp2_colour_space;
+  out.icc_profile = std::move(image.icc_profile);
   out.warnings = std::move(image.warnings);
   for (codec::DecodedComponent& c : image.components) {
     DecodedComponent d;
@@ -208,6 +209,7 @@ ImageInfo read_info(const void* data, std::size_t size, const DecodeOptions& opt
     out.x1 = header.x1;
     out.y1 = header.y1;
     out.colour_space = header.jp2_colour_space;
+    out.icc_profile = header.icc_profile;
     for (const codec::DecodedComponent& c : header.components) out.components.push_back(info_of(c));
     return out;
   });

@@ -126,6 +126,11 @@ Image read_with_oiio(const std::string& path) {
   image.is_signed = kind.is_signed;
   image.is_float = kind.is_float;
   image.pixels.resize(samples);
+  if (const OIIO::ParamValue* icc = spec.find_attribute("ICCProfile");
+      icc != nullptr && icc->type().basetype == OIIO::TypeDesc::UINT8) {
+    const auto* bytes = static_cast<const std::uint8_t*>(icc->data());
+    image.icc_profile.assign(bytes, bytes + icc->type().numelements() * icc->nvalues());
+  }
 
   switch (kind.read_as.basetype) {
     case OIIO::TypeDesc::UINT8:

@@ -71,6 +71,9 @@ void write_with_oiio(const std::string& path, const Image& image) {
   spec.attribute("oiio:UnassociatedAlpha", 1);
   // Some writers (PNM in newer OpenImageIO) pick their bit depth from this.
   if (!image.is_float) spec.attribute("oiio:BitsPerSample", int(type.size() * 8));
+  if (!image.icc_profile.empty())
+    spec.attribute("ICCProfile", OIIO::TypeDesc(OIIO::TypeDesc::UINT8, static_cast<int>(image.icc_profile.size())),
+                   image.icc_profile.data());
 
   detail::write_atomically(path, [&](const std::string& temporary) {
     if (!out->open(temporary, spec)) {

@@ -202,7 +202,10 @@ DecodedImage read_header(std::span<const std::uint8_t> bytes, const DecodeOption
   DecodedImage image =
       allocate_image(opened.cs.siz, window, selected_components(opened.cs.siz, options), options, false);
   if (!options.components.empty()) select_in_order(image, options);
-  if (opened.jp2) image.jp2_colour_space = opened.jp2->colour_space;
+  if (opened.jp2) {
+    image.jp2_colour_space = opened.jp2->colour_space;
+    image.icc_profile = opened.jp2->icc_profile;
+  }
   image.warnings = opened.cs.warnings;
   return image;
 }
@@ -264,6 +267,7 @@ DecodedImage decode_with(std::span<const std::uint8_t> bytes, const DecodeOption
   const bool rows_to_sink = sink && options.components.empty() && !(jp2 && rewrites_channels(*jp2));
   DecodedImage image = allocate_image(cs.siz, window, selected, options, !rows_to_sink);
   image.warnings = cs.warnings;
+  if (jp2) image.icc_profile = jp2->icc_profile;
   if (rows_to_sink) {
     if (jp2) image.jp2_colour_space = jp2->colour_space;
     sink->begin(image);

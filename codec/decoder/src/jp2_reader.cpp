@@ -111,6 +111,21 @@ std::vector<Jp2ChannelDefinition> read_cdef(ByteReader in) {
   return out;
 }
 
+// I.5.3.3 METH 2: an ICC profile (ICC.1) fills the rest of the box. Its header (128 bytes) opens
+// with the profile's size, which must fit the box; bytes past it (padding) are not the profile's.
+std::vector<std::uint8_t> read_icc_profile(ByteReader& in) {
+  constexpr std::size_t kHeaderBytes = 128;
+  const std::size_t available = in.remaining();
+  if (available < kHeaderBytes)
+    in.fail("colr holds " + std::to_string(available) + " bytes of ICC profile, less than a profile header (128)");
+  const std::uint32_t size = ByteReader(in).u32("ICC profile size");  // read again as part of the profile
+  if (size < kHeaderBytes || size > available)
+    in.fail("the ICC profile says it is " + std::to_string(size) + " bytes long, and colr holds " +
+            std::to_string(available));
+  const std::span<const std::uint8_t> profile = in.take(size, "ICC profile");
+  return {profile.begin(), profile.end()};
+}
+
 void read_jp2_header(ByteReader inner, Jp2File& f) {
   bool have_colr = false;
   while (!inner.at_end()) {
@@ -129,7 +144,7 @@ void read_jp2_header(ByteReader inner, Jp2File& f) {
       if (method == 1)
         f.colour_space = static_cast<int>(body.u32("EnumCS"));
       else if (method == 2)
-        f.icc_profile = true;
+        f.icc_profile = read_icc_profile(body);
     } else if (sub.type == box_type("pclr")) {
       f.palette = read_pclr(body);
     } else if (sub.type == box_type("cmap")) {

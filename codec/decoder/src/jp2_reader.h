@@ -34,11 +34,12 @@ struct Jp2ChannelDefinition {
 struct Jp2File {
   std::span<const std::uint8_t> codestream;
   std::size_t codestream_offset = 0;
-  int colour_space = 0;                           // colr method 1's EnumCS (16 sRGB, 17 greyscale, 18 sYCC), 0 if none
-  bool icc_profile = false;                       // colr method 2 (restricted ICC): samples are passed on as they are
-  int ihdr_components = 0;                        // ihdr NC
-  Jp2Palette palette;                             // entries 0: no palette
-  std::vector<Jp2ChannelSource> channel_sources;  // from cmap; empty: component i is channel i
+  int colour_space = 0;  // colr method 1's EnumCS (16 sRGB, 17 greyscale, 18 sYCC), 0 if none
+  // colr method 2 (restricted ICC): the profile's bytes; the samples are passed on as they are.
+  std::vector<std::uint8_t> icc_profile;
+  int ihdr_components = 0;                                // ihdr NC
+  Jp2Palette palette;                                     // entries 0: no palette
+  std::vector<Jp2ChannelSource> channel_sources;          // from cmap; empty: component i is channel i
   std::vector<Jp2ChannelDefinition> channel_definitions;  // from cdef; empty: none
 };
 

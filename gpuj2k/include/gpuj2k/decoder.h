@@ -59,6 +59,8 @@ struct ImageInfo {
   std::int64_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // the decoded area on the (reduced) reference grid
   std::vector<ComponentInfo> components;
   int colour_space = 0;  // JP2/JPH: 16 sRGB, 17 greyscale, 18 sYCC (16 after conversion); 0: none given
+  // JP2/JPH with a restricted ICC colour specification: the profile (samples are not converted).
+  std::vector<std::uint8_t> icc_profile;
   int width() const { return static_cast<int>(x1 - x0); }
   int height() const { return static_cast<int>(y1 - y0); }
 };
@@ -71,7 +73,8 @@ struct DecodedImage {
   std::int64_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
   std::vector<DecodedComponent> components;
   int colour_space = 0;
-  std::vector<std::string> warnings;  // what did not stop the decode (a truncated stream): one line each
+  std::vector<std::uint8_t> icc_profile;  // as ImageInfo's
+  std::vector<std::string> warnings;      // what did not stop the decode (a truncated stream): one line each
   int width() const { return static_cast<int>(x1 - x0); }
   int height() const { return static_cast<int>(y1 - y0); }
 };

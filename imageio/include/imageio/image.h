@@ -30,6 +30,10 @@ struct Image {
   bool is_float = false;
   // Row-major, top row first, channels interleaved.
   std::vector<float> pixels;
+  // The ICC colour profile the file carries (read through OpenImageIO), or that a writer should
+  // embed where the format can carry one (TIFF, PNG, JPEG); empty: none. PNM and PFM have no place
+  // for one.
+  std::vector<std::uint8_t> icc_profile;
 
   float& at(int x, int y, int c) { return pixels[index(x, y, c)]; }
   float at(int x, int y, int c) const { return pixels[index(x, y, c)]; }

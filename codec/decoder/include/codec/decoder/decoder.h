@@ -76,6 +76,9 @@ struct DecodedImage {
   // sYCC conversion), 0 for a codestream or a JP2 file without an enumerated colr box. For a JP2
   // file, `components` are its channels: palette applied, colours in the colour space's order.
   int jp2_colour_space = 0;
+  // JP2 files with a restricted ICC colr box (METH 2): the profile, for the output file to carry;
+  // the samples are not converted. Empty otherwise.
+  std::vector<std::uint8_t> icc_profile;
 };
 
 // Milliseconds spent in each stage of one decode, in data-flow order (the encoder's StageTimes,
