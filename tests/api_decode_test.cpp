@@ -125,7 +125,8 @@ TEST(ApiDecode, IntoCallerBuffersOfEveryLayout) {
 TEST(ApiDecode, IccProfileReachesTheCaller) {
   const Encoded e = encode_lossless(16, 8, 3, 8);
   const std::vector<std::uint8_t> profile = test_support::made_up_icc_profile(200);
-  const auto file = test_support::jp2_file(e.j2k, {test_support::box("colr", test_support::icc_colr(profile))});
+  const auto file = test_support::jp2_file(
+      e.j2k, {test_support::ihdr(16, 8, 3, 8), test_support::box("colr", test_support::icc_colr(profile))});
   EXPECT_EQ(gpuj2k::read_info(file.data(), file.size()).icc_profile, profile);
   EXPECT_EQ(gpuj2k::decode(file.data(), file.size()).icc_profile, profile);
   EXPECT_TRUE(gpuj2k::decode(e.j2k.data(), e.j2k.size()).icc_profile.empty());

@@ -920,24 +920,29 @@ TEST(J2kDecoderJp2, IccProfileIsHandedOn) {
   const auto stream = encode(image(Pattern::Mix, 21, 13, 3, 8), lossless());
   const std::vector<std::uint8_t> profile = test_support::made_up_icc_profile(300);
   const codec::DecodedImage plain = codec::decode(stream, options());
-  const codec::DecodedImage img =
-      codec::decode(jp2_file(stream, {box("colr", test_support::icc_colr(profile))}), options());
+  const codec::DecodedImage img = codec::decode(
+      jp2_file(stream, {test_support::ihdr(21, 13, 3, 8), box("colr", test_support::icc_colr(profile))}), options());
   EXPECT_EQ(img.icc_profile, profile);
   ASSERT_EQ(img.components.size(), plain.components.size());
   for (std::size_t c = 0; c < img.components.size(); ++c)
     EXPECT_EQ(img.components[c].samples, plain.components[c].samples) << "component " << c;
-  EXPECT_EQ(codec::read_header(jp2_file(stream, {box("colr", test_support::icc_colr(profile))}), options()).icc_profile,
-            profile);
+  EXPECT_EQ(
+      codec::read_header(
+          jp2_file(stream, {test_support::ihdr(21, 13, 3, 8), box("colr", test_support::icc_colr(profile))}), options())
+          .icc_profile,
+      profile);
   EXPECT_TRUE(plain.icc_profile.empty());
 
   // Bytes past the profile's own size are padding, not the profile's.
   std::vector<std::uint8_t> padded = test_support::icc_colr(profile);
   padded.insert(padded.end(), {0, 0, 0, 0});
-  EXPECT_EQ(codec::decode(jp2_file(stream, {box("colr", padded)}), options()).icc_profile, profile);
+  EXPECT_EQ(
+      codec::decode(jp2_file(stream, {test_support::ihdr(21, 13, 3, 8), box("colr", padded)}), options()).icc_profile,
+      profile);
 
   auto refused = [&](const std::vector<std::uint8_t>& colr, const std::string& says) {
     try {
-      (void)codec::decode(jp2_file(stream, {box("colr", colr)}), options());
+      (void)codec::decode(jp2_file(stream, {test_support::ihdr(21, 13, 3, 8), box("colr", colr)}), options());
       ADD_FAILURE() << "accepted: " << says;
     } catch (const codec::DecodeError& e) {
       EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();

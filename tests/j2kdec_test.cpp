@@ -222,8 +222,9 @@ namespace {
 // A JP2 file of the fixture's image with a restricted ICC colr box holding `profile`.
 fs::path jp2_with_profile(const fs::path& stream, const std::vector<std::uint8_t>& profile, const fs::path& file) {
   const std::string codestream = file_bytes(stream);
-  const auto bytes = test_support::jp2_file(std::vector<std::uint8_t>(codestream.begin(), codestream.end()),
-                                            {test_support::box("colr", test_support::icc_colr(profile))});
+  const auto bytes = test_support::jp2_file(
+      std::vector<std::uint8_t>(codestream.begin(), codestream.end()),
+      {test_support::ihdr(320, 240, 3, 8), test_support::box("colr", test_support::icc_colr(profile))});
   std::ofstream(file, std::ios::binary)
       .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   return file;

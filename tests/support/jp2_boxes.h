@@ -32,6 +32,21 @@ inline std::vector<std::uint8_t> jp2_file(const std::vector<std::uint8_t>& codes
   return out;
 }
 
+// An image header box (I.5.3.1), the first box a jp2h must hold: size, components, bits per
+// component (unsigned), compression type 7, colour space known, no intellectual property box.
+inline std::vector<std::uint8_t> ihdr(std::uint32_t width, std::uint32_t height, std::uint16_t components, int bits) {
+  std::vector<std::uint8_t> body(14, 0);
+  for (int i = 0; i < 4; ++i) {
+    body[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(height >> (24 - 8 * i));
+    body[static_cast<std::size_t>(4 + i)] = static_cast<std::uint8_t>(width >> (24 - 8 * i));
+  }
+  body[8] = static_cast<std::uint8_t>(components >> 8);
+  body[9] = static_cast<std::uint8_t>(components);
+  body[10] = static_cast<std::uint8_t>(bits - 1);
+  body[11] = 7;
+  return box("ihdr", body);
+}
+
 // A made-up ICC profile of `size` bytes (at least 132): the ICC.1 header's fields a reader looks
 // at (size, version 4.3, a display-class RGB profile to XYZ, the 'acsp' signature, the D50 PCS
 // illuminant), no tags, then
