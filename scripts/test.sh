@@ -39,7 +39,29 @@ phase "ASan+UBSan build" bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=Rel
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
-phase "ASan+UBSan tests" run_ctest build-asan 1800
+# LeakSanitizer's own tracer sometimes crashes at exit in a process that used Mesa's llvmpipe
+# ("Tracer caught signal 11", then "LeakSanitizer has encountered a fatal error"): no finding, a
+# failure to look. Seen in api_test on a loaded 2-core machine, after all its tests had passed. When
+# that is the only kind of failure, the failed tests run once more; any sanitizer finding or failed
+# test fails the job at once.
+run_sanitizer_ctest() {
+  local log
+  log=$(mktemp)
+  if run_ctest build-asan 1800 2>&1 | tee "$log"; then
+    rm -f "$log"
+    return 0
+  fi
+  if grep -q "LeakSanitizer has encountered a fatal error" "$log" &&
+    ! grep -qE "ERROR: AddressSanitizer|ERROR: LeakSanitizer: detected|runtime error:|\[  FAILED  \]|Timeout" "$log"; then
+    rm -f "$log"
+    echo "test.sh: LeakSanitizer's tracer crashed (no finding); the failed tests run once more"
+    (cd build-asan && ctest --rerun-failed --output-on-failure --timeout 1800)
+  else
+    rm -f "$log"
+    return 1
+  fi
+}
+phase "ASan+UBSan tests" run_sanitizer_ctest
 
 # The seeds are made by the installed codec tools of the Release build above.
 phase "fuzzing" env FUZZ_SEED_BIN="$PWD/build-codec/prefix/bin" FUZZ_SECONDS="${FUZZ_SECONDS:-15}" bash scripts/fuzz.sh
