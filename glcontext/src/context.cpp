@@ -3,9 +3,9 @@
 
 #include "backend.h"
 #include "glcontext/error.h"
+#include "glcontext/gpu_fingerprint.h"
 
 #include <cctype>
-#include <filesystem>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -34,19 +34,10 @@ std::unique_ptr<detail::Backend> create_backend(Platform platform, bool auto_mod
 
 // Whether the system has a device node through which a driver could reach a GPU: a DRM node
 // (/dev/dri/card*, /dev/dri/renderD*: Mesa's hardware drivers, NVIDIA's with DRM), NVIDIA's own
-// (/dev/nvidia0, ...) or WSL's /dev/dxg. Without one no driver can, and asking EGL would only load
-// Mesa's libraries to find its software device: a millisecond, 1 % of a small encode.
-bool gpu_device_node_present() {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  for (const fs::directory_entry& e : fs::directory_iterator("/dev/dri", ec)) {
-    const std::string name = e.path().filename().string();
-    if (name.starts_with("card") || name.starts_with("renderD")) return true;
-  }
-  for (const char* node : {"/dev/nvidia0", "/dev/dxg"})
-    if (fs::exists(node, ec)) return true;
-  return false;
-}
+// (/dev/nvidia0) or WSL's /dev/dxg, which is what the fingerprint names. Without one no driver can,
+// and asking EGL would only load Mesa's libraries to find its software device: a millisecond, 1 % of
+// a small encode.
+bool gpu_device_node_present() { return !hardware_gpu_fingerprint().empty(); }
 
 std::string gl_string(const GlApi& gl, GLenum name) {
   const GLubyte* s = gl.glGetString(name);
