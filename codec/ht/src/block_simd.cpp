@@ -4,6 +4,8 @@
 #include <hwy/foreach_target.h>              // must precede highway.h
 #include <hwy/highway.h>
 
+#include <bit>
+
 #include "block_simd.h"
 #include "codec/t1/dead_zone.h"
 
@@ -141,6 +143,67 @@ void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const double* HWY_
   }
 }
 
+void BitLengths(const std::uint32_t* HWY_RESTRICT magnitude, std::size_t n, std::uint8_t* HWY_RESTRICT length,
+                std::uint8_t* HWY_RESTRICT length_below_top) {
+  const hn::ScalableTag<std::int32_t> di;
+  const hn::Rebind<float, decltype(di)> df;
+  const hn::Rebind<std::uint8_t, decltype(di)> d8;
+  const std::size_t N = hn::Lanes(di);
+  const auto zero = hn::Zero(di), one = hn::Set(di, 1), low_half = hn::Set(di, 0xFFFF);
+  const auto exponent_bias = hn::Set(di, 126), sixteen = hn::Set(di, 16);
+  // The bit length of x < 2^16 (exact as a float): its float's exponent field less 126; 0 for 0.
+  const auto short_length = [&](auto x) {
+    return hn::Max(hn::Sub(hn::ShiftRight<23>(hn::BitCast(di, hn::ConvertTo(df, x))), exponent_bias), zero);
+  };
+  // That of v < 2^31, from its high and low 16 bits.
+  const auto bit_length = [&](auto v) {
+    const auto high = hn::ShiftRight<16>(v);
+    return hn::IfThenElse(hn::Gt(high, zero), hn::Add(short_length(high), sixteen), short_length(hn::And(v, low_half)));
+  };
+  std::size_t i = 0;
+  for (; i + N <= n; i += N) {
+    const auto v = hn::BitCast(di, hn::LoadU(hn::RebindToUnsigned<decltype(di)>(), magnitude + i));
+    const auto l = bit_length(v);
+    const auto top = hn::IfThenElseZero(hn::Gt(l, zero), hn::operator<<(one, hn::Sub(l, one)));
+    hn::StoreU(hn::DemoteTo(d8, l), d8, length + i);
+    hn::StoreU(hn::DemoteTo(d8, bit_length(hn::Xor(v, top))), d8, length_below_top + i);
+  }
+  for (; i < n; ++i) {
+    const std::uint32_t m = magnitude[i];
+    const int l = static_cast<int>(std::bit_width(m));
+    length[i] = static_cast<std::uint8_t>(l);
+    length_below_top[i] = static_cast<std::uint8_t>(std::bit_width(l > 0 ? m ^ (std::uint32_t{1} << (l - 1)) : 0u));
+  }
+}
+
+void StripeColumns(const std::uint32_t* HWY_RESTRICT stripe, std::size_t width, std::size_t stride, int rows, int p,
+                   std::uint8_t* HWY_RESTRICT columns) {
+  const hn::ScalableTag<std::int32_t> di;
+  const hn::Rebind<std::uint8_t, decltype(di)> d8;
+  const std::size_t N = hn::Lanes(di);
+  const auto below_plane = hn::Set(di, static_cast<std::int32_t>((std::uint32_t{1} << p) - 1));
+  const auto one = hn::Set(di, 1);
+  std::size_t x = 0;
+  for (; x + N <= width; x += N) {
+    auto code = hn::Zero(di);
+    for (int r = 0; r < rows; ++r) {
+      const auto v = hn::BitCast(di, hn::LoadU(hn::RebindToUnsigned<decltype(di)>(), stripe + r * stride + x));
+      const auto significant = hn::Gt(v, below_plane);  // magnitudes are below 2^31
+      const auto bit = hn::And(hn::ShiftRightSame(v, p - 1), one);
+      code = hn::Or(code, hn::IfThenElseZero(significant, hn::ShiftLeftSame(hn::Add(one, hn::ShiftLeft<4>(bit)), r)));
+    }
+    hn::StoreU(hn::DemoteTo(d8, code), d8, columns + x);
+  }
+  for (; x < width; ++x) {
+    std::uint32_t code = 0;
+    for (int r = 0; r < rows; ++r) {
+      const std::uint32_t v = stripe[static_cast<std::size_t>(r) * stride + x];
+      if ((v >> p) != 0) code |= (1u | (((v >> (p - 1)) & 1u) << 4)) << r;
+    }
+    columns[x] = static_cast<std::uint8_t>(code);
+  }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace codec::ht::simd
 HWY_AFTER_NAMESPACE();
@@ -150,6 +213,17 @@ namespace codec::ht::simd {
 HWY_EXPORT(QuantizeRow);
 HWY_EXPORT(PlaneErrors);
 HWY_EXPORT(CleanupErrorSums);
+HWY_EXPORT(BitLengths);
+HWY_EXPORT(StripeColumns);
+
+void stripe_columns(const std::uint32_t* stripe, std::size_t width, std::size_t stride, int rows, int p,
+                    std::uint8_t* columns) {
+  HWY_DYNAMIC_DISPATCH(StripeColumns)(stripe, width, stride, rows, p, columns);
+}
+
+void bit_lengths(const std::uint32_t* magnitude, std::size_t n, std::uint8_t* length, std::uint8_t* length_below_top) {
+  HWY_DYNAMIC_DISPATCH(BitLengths)(magnitude, n, length, length_below_top);
+}
 
 CleanupErrors cleanup_errors(const std::uint32_t* magnitude, const std::uint8_t* fraction, std::size_t n, int p,
                              double half_at_zero, bool refinement) {

@@ -32,4 +32,14 @@ CleanupErrors cleanup_errors(const std::uint32_t* magnitude, const std::uint8_t*
 void plane_errors(const std::uint32_t* magnitude, const double* offset, std::size_t n, int planes, double half_at_zero,
                   double* error);
 
+// Per magnitude (each below 2^31), its bit length and that of the magnitude without its top bit
+// (HtBlock::lengths, lengths_below_top).
+void bit_lengths(const std::uint32_t* magnitude, std::size_t n, std::uint8_t* length, std::uint8_t* length_below_top);
+
+// For MagRef on plane p - 1 (p >= 1): per column of a stripe of `rows` (1..4) rows of `width`
+// magnitudes (row r at stripe + r * stride), one byte: bit r set where row r's magnitude is
+// significant at plane p (at or above 2^p), and bit 4 + r its bit p - 1 where it is.
+void stripe_columns(const std::uint32_t* stripe, std::size_t width, std::size_t stride, int rows, int p,
+                    std::uint8_t* columns);
+
 }  // namespace codec::ht::simd

@@ -14,11 +14,16 @@
 namespace codec::ht {
 namespace {
 
-// Magnitude exponent E_n (T.814 7.3.7): the bit length of 2 mu - 1, 0 for an insignificant sample.
-// v_n = 2 (mu - 1) + sign then fits in E_n bits, with bit E_n - 1 set whenever E_n > 1.
-// Written without a branch ((2 mu - 1) for mu > 0, 0 for mu = 0): whether a sample is 0 is
-// unpredictable in a busy block.
-int exponent(std::uint32_t mu) { return static_cast<int>(std::bit_width((mu << 1) - (mu != 0 ? 1u : 0u))); }
+// Magnitude exponent E_n (T.814 7.3.7) of mu = magnitude >> p: the bit length of 2 mu - 1, 0 for an
+// insignificant sample. v_n = 2 (mu - 1) + sign then fits in E_n bits, with bit E_n - 1 set
+// whenever E_n > 1. From the magnitude's bit length L and T, that of the magnitude without its top
+// bit: mu is significant when L > p, and a power of two (2 mu - 1 one bit shorter than 2 mu)
+// exactly when no bit between p and the top is set, T <= p. Written without a branch, so that the
+// row loop vectorises.
+std::uint8_t exponent(std::uint8_t length, std::uint8_t below_top, std::uint8_t p) {
+  const auto significant = static_cast<std::uint8_t>(length > p ? 1 : 0);
+  return static_cast<std::uint8_t>(significant * (length - p + (below_top > p ? 1 : 0)));
+}
 
 // The block's samples as the cleanup pass sees them, with 0 outside the block so that quads that
 // straddle its right or bottom edge and the neighbours of edge quads need no special cases: the
@@ -29,8 +34,9 @@ int exponent(std::uint32_t mu) { return static_cast<int>(std::bit_width((mu << 1
 // thread's, reused from block to block.
 class SampleGrid {
  public:
-  SampleGrid(std::span<const std::uint32_t> magnitudes, std::span<const std::uint8_t> negative, int width, int height,
-             int plane)
+  SampleGrid(std::span<const std::uint32_t> magnitudes, std::span<const std::uint8_t> negative,
+             std::span<const std::uint8_t> lengths, std::span<const std::uint8_t> lengths_below_top, int width,
+             int height, int plane)
       : magnitudes_(magnitudes),
         negative_(negative),
         width_(width),
@@ -39,9 +45,11 @@ class SampleGrid {
         exponents_(thread_exponents()) {
     exponents_.assign(stride_ * (static_cast<std::size_t>(height) + 2) + kPairOverread, 0);
     for (int y = 0; y < height; ++y) {
-      const std::uint32_t* row = magnitudes.data() + index(0, y);
+      const std::uint8_t* length = lengths.data() + index(0, y);
+      const std::uint8_t* below_top = lengths_below_top.data() + index(0, y);
       std::uint8_t* cells = exponents_.data() + cell(0, y);
-      for (int x = 0; x < width; ++x) cells[x] = static_cast<std::uint8_t>(exponent(row[x] >> plane));
+      const auto p = static_cast<std::uint8_t>(plane);
+      for (int x = 0; x < width; ++x) cells[x] = exponent(length[x], below_top[x], p);
     }
   }
   // x in -2 .. width + 1, y in -1 .. height.
@@ -258,15 +266,18 @@ std::vector<std::uint8_t> assemble(std::vector<std::uint8_t> magsgn, MelPacker& 
 }  // namespace
 
 std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitudes,
-                                         std::span<const std::uint8_t> negative, int width, int height, int plane) {
+                                         std::span<const std::uint8_t> negative, std::span<const std::uint8_t> lengths,
+                                         std::span<const std::uint8_t> lengths_below_top, int width, int height,
+                                         int plane) {
   if (width < 1 || height < 1 || width > 1024 || height > 1024 || width * height > 4096)
     throw std::invalid_argument("HT cleanup: a code-block of " + std::to_string(width) + "x" + std::to_string(height) +
                                 " is outside 1..1024 with at most 4096 samples");
   const auto samples = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-  if (magnitudes.size() != samples || negative.size() != samples)
-    throw std::invalid_argument("HT cleanup: magnitudes and signs must hold width * height samples");
+  if (magnitudes.size() != samples || negative.size() != samples || lengths.size() != samples ||
+      lengths_below_top.size() != samples)
+    throw std::invalid_argument("HT cleanup: magnitudes, signs and bit lengths must hold width * height samples");
   if (plane < 0 || plane > 30) throw std::invalid_argument("HT cleanup: the plane must be 0..30");
-  const SampleGrid grid(magnitudes, negative, width, height, plane);
+  const SampleGrid grid(magnitudes, negative, lengths, lengths_below_top, width, height, plane);
   const int quads_wide = (width + 1) / 2, quads_high = (height + 1) / 2;
 
   MagSgnPacker magsgn;

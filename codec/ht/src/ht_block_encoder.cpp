@@ -84,6 +84,13 @@ std::uint32_t split_signs(const std::int32_t* indices, std::size_t count, std::u
   return all;
 }
 
+// HtBlock's per-sample bit lengths, from its magnitudes.
+void measure_bit_lengths(HtBlock& b) {
+  b.lengths.resize(b.magnitudes.size());
+  b.lengths_below_top.resize(b.magnitudes.size());
+  simd::bit_lengths(b.magnitudes.data(), b.magnitudes.size(), b.lengths.data(), b.lengths_below_top.data());
+}
+
 }  // namespace
 
 HtBlock load_ht_block(std::span<const std::int32_t> coefficients, int width, int height,
@@ -93,10 +100,11 @@ HtBlock load_ht_block(std::span<const std::int32_t> coefficients, int width, int
   if (coefficients.size() != n) throw std::invalid_argument("HT block: expected width * height coefficients");
   if (!fractions.empty() && fractions.size() != n)
     throw std::invalid_argument("HT block: expected one fraction per coefficient");
-  HtBlock b{width, height, std::vector<std::uint32_t>(n), std::vector<std::uint8_t>(n), {}, 0};
+  HtBlock b{width, height, std::vector<std::uint32_t>(n), std::vector<std::uint8_t>(n), {}, 0, {}, {}};
   const std::uint32_t all = split_signs(coefficients.data(), n, b.magnitudes.data(), b.negative.data());
   b.fractions.assign(fractions.begin(), fractions.end());
   b.bit_planes = static_cast<int>(std::bit_width(all));
+  measure_bit_lengths(b);
   return b;
 }
 
@@ -104,12 +112,13 @@ HtBlock load_ht_block(const t1::IntegerBlock& block) {
   check_size(block.width, block.height);
   const auto w = static_cast<std::size_t>(block.width);
   const std::size_t n = w * static_cast<std::size_t>(block.height);
-  HtBlock b{block.width, block.height, std::vector<std::uint32_t>(n), std::vector<std::uint8_t>(n), {}, 0};
+  HtBlock b{block.width, block.height, std::vector<std::uint32_t>(n), std::vector<std::uint8_t>(n), {}, 0, {}, {}};
   std::uint32_t all = 0;
   for (int y = 0; y < block.height; ++y)
     all |= split_signs(block.origin + y * block.stride, w, b.magnitudes.data() + static_cast<std::size_t>(y) * w,
                        b.negative.data() + static_cast<std::size_t>(y) * w);
   b.bit_planes = static_cast<int>(std::bit_width(all));
+  measure_bit_lengths(b);
   return b;
 }
 
@@ -122,7 +131,9 @@ HtBlock load_ht_block(const t1::FloatBlock& block) {
             std::vector<std::uint32_t>(n),
             std::vector<std::uint8_t>(n),
             std::vector<std::uint8_t>(n),
-            0};
+            0,
+            {},
+            {}};
   // Cold rows a plane's width apart: every line asked for up front (as t1's survey_float_block).
   constexpr std::size_t kLine = 64 / sizeof(float);
   for (int y = 0; y < block.height; ++y)
@@ -134,6 +145,7 @@ HtBlock load_ht_block(const t1::FloatBlock& block) {
                               b.negative.data() + base, b.fractions.data() + base);
   }
   b.bit_planes = static_cast<int>(std::bit_width(all));
+  measure_bit_lengths(b);
   return b;
 }
 
@@ -158,7 +170,7 @@ t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int 
     out.missing_msbs = magnitude_bitplanes;
     return out;
   }
-  out.data = encode_cleanup(b.magnitudes, b.negative, b.width, b.height, cleanup_plane);
+  out.data = encode_cleanup(b.magnitudes, b.negative, b.lengths, b.lengths_below_top, b.width, b.height, cleanup_plane);
   out.first_pass_planes = out.bit_planes - cleanup_plane;
   out.missing_msbs = magnitude_bitplanes - 1 - cleanup_plane;
   const double decrease = measured ? sums.energy - sums.after_cleanup : 0.0;
@@ -196,18 +208,21 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
   for (int y0 = 0; y0 < b.height; y0 += 2) {
     const std::uint32_t* upper = b.magnitudes.data() + static_cast<std::size_t>(y0) * w;
     const std::uint32_t* lower = y0 + 1 < b.height ? upper + w : nullptr;  // none below the last odd row
+    const std::uint8_t* upper_lengths = b.lengths.data() + static_cast<std::size_t>(y0) * w;
+    const std::uint8_t* lower_lengths = upper_lengths + w;
     for (int x0 = 0; x0 < b.width; x0 += 2) {
       const bool right = x0 + 1 < b.width;
       const std::uint32_t m[4] = {upper[x0], lower ? lower[x0] : 0u, right ? upper[x0 + 1] : 0u,
                                   lower && right ? lower[x0 + 1] : 0u};
+      const int lengths[4] = {upper_lengths[x0], lower ? lower_lengths[x0] : 0, right ? upper_lengths[x0 + 1] : 0,
+                              lower && right ? lower_lengths[x0 + 1] : 0};
       const std::uint32_t largest = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
-      const int length = static_cast<int>(std::bit_width(largest));
+      const int length = std::max(std::max(lengths[0], lengths[1]), std::max(lengths[2], lengths[3]));
       if (length == 0) continue;
       const int below_top = static_cast<int>(std::bit_width(largest & ~(std::uint32_t{1} << (length - 1))));
       ++quad_count;
       --quad_ends[static_cast<std::size_t>(length)];
-      for (const std::uint32_t v : m) {
-        const int sample_length = static_cast<int>(std::bit_width(v));
+      for (const int sample_length : lengths) {
         if (sample_length == 0) continue;
         ++sample_count;
         --sample_ends[static_cast<std::size_t>(sample_length)];

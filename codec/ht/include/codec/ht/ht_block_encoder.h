@@ -43,6 +43,10 @@ struct HtBlock {
   std::vector<std::uint8_t> negative;   // non-zero: negative
   std::vector<std::uint8_t> fractions;  // empty: reversible
   int bit_planes = 0;                   // the highest set bit of any magnitude, plus one
+  // Per sample, the bit length L of its magnitude and T of its magnitude without the top bit: its
+  // exponent at any cleanup plane p follows from them (T.814 7.3.7: L - p + [T > p] where L > p),
+  // so each candidate cleanup needs no bit scan of its own.
+  std::vector<std::uint8_t> lengths, lengths_below_top;
 };
 
 HtBlock load_ht_block(std::span<const std::int32_t> coefficients, int width, int height,
