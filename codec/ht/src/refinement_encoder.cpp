@@ -79,100 +79,62 @@ class MagRefPacker {
   std::uint32_t last_ = 0xFF;
 };
 
-// Which samples a pass has seen significant so far: those significant in the cleanup, and those
-// the SigProp pass has made significant up to the current one. Kept with a border of insignificant
-// samples around the block, so that a sample's eight neighbours are read without bounds checks.
-class Significance {
- public:
-  Significance(std::span<const std::uint32_t> magnitudes, int width, int height, int plane)
-      : width_(width),
-        stride_(static_cast<std::size_t>(width) + 2),
-        state_(stride_ * (static_cast<std::size_t>(height) + 2) + kRowOverread, 0) {
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) state_[cell(x, y)] = (magnitudes[index(x, y)] >> plane) != 0 ? 1 : 0;
-  }
-  // Whether any of the eight neighbours of the insignificant sample at `cell` is significant: the
-  // three cells from its north-west, west and south-west neighbour each read as one word (the
-  // sample's own cell is 0, so the middle word need not mask it).
-  static bool any_neighbour(const std::uint8_t* cell, std::size_t stride) {
-    std::uint32_t above, middle, below;
-    std::memcpy(&above, cell - stride - 1, sizeof above);
-    std::memcpy(&middle, cell - 1, sizeof middle);
-    std::memcpy(&below, cell + stride - 1, sizeof below);
-    return ((above | middle | below) & kThreeCells) != 0;
-  }
-  // Whether the cells around and in the `cols` x `rows` samples from (x0, y0) (cols, rows <= 4)
-  // are all insignificant: then none of those samples has a significant neighbour. One word per
-  // row, from the column left of x0.
-  bool neighbourhood_empty(int x0, int y0, int cols, int rows) const {
-    const int bytes = cols + 2;
-    const std::uint64_t mask = std::endian::native == std::endian::little ? (std::uint64_t{1} << (8 * bytes)) - 1
-                                                                          : ~std::uint64_t{0} << (64 - 8 * bytes);
-    const std::uint8_t* row = state_.data() + cell(x0 - 1, y0 - 1);
-    std::uint64_t any = 0;
-    for (int r = 0; r < rows + 2; ++r, row += stride_) {
-      std::uint64_t word;
-      std::memcpy(&word, row, sizeof word);
-      any |= word;
-    }
-    return (any & mask) == 0;
-  }
-  // Raw access for the passes' inner loops: the state byte of (x, y) is cells()[cell_of(x, y)],
-  // rows stride() apart.
-  std::uint8_t* cells() { return state_.data(); }
-  const std::uint8_t* cells() const { return state_.data(); }
-  std::size_t cell_of(int x, int y) const { return cell(x, y); }
-  std::size_t stride() const { return stride_; }
-  // The sample's index in the block's row-major arrays.
-  std::size_t index(int x, int y) const {
-    return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
-  }
-
- private:
-  std::size_t cell(int x, int y) const {
-    return (static_cast<std::size_t>(y) + 1) * stride_ + static_cast<std::size_t>(x) + 1;
-  }
-
-  // The low three bytes of a little-endian word: the three cells from the one it starts at.
-  static constexpr std::uint32_t kThreeCells = std::endian::native == std::endian::little ? 0x00FFFFFFu : 0xFFFFFF00u;
-  // neighbourhood_empty reads a 64-bit word from a bottom-border row's cell up to two left of
-  // the last (any_neighbour a 32-bit one from the last): up to 6 cells past the buffer's end.
-  static constexpr std::size_t kRowOverread = 8;
-  int width_;
-  std::size_t stride_;
-  std::vector<std::uint8_t> state_;  // 0 insignificant, 1 significant in the cleanup, 2 by SigProp
-};
-
 // The SigProp pass on plane q = p - 1 (T.814 7.4): stripes of four rows, each in groups of four
 // columns; in a group, column by column and top to bottom, every sample not significant in the
 // cleanup with a significant neighbour (in the cleanup, or made significant earlier in this pass:
 // the scan is causal, so those are the ones already visited) sends bit q of its magnitude; then
 // the group's newly significant samples send their signs (1: negative), in the same order.
+//
+// Within a stripe the scan is simply column by column, so the significance a sample's neighbours
+// have when it is visited lives in one byte per column (`state`, with an empty column either side):
+// bit 0 the row above the stripe (as the previous stripe left it, SigProp included), bits 1..4 the
+// stripe's rows (the cleanup's significance, raised as the scan goes), bit 5 the row below (the
+// cleanup's: not visited yet). A column none of whose samples has a neighbour is passed over with a
+// few bit operations. `columns` holds simd::stripe_columns' bytes of every stripe, one after another.
 void sigprop_pass(std::span<const std::uint32_t> m, std::span<const std::uint8_t> negative, int width, int height,
-                  int q, Significance& sig, SigPropPacker& out, std::vector<std::size_t>& became) {
+                  int q, std::span<const std::uint8_t> columns, SigPropPacker& out, std::vector<std::size_t>& became) {
+  const auto w = static_cast<std::size_t>(width);
+  // The thread's buffers, reused from block to block, reached through plain pointers in the loops
+  // (each use of a thread_local in a shared library is a call to __tls_get_addr).
+  thread_local std::vector<std::uint8_t> state_buffer, above_buffer;
+  state_buffer.assign(w + 2, 0);
+  above_buffer.assign(w, 0);
+  std::uint8_t* const state = state_buffer.data();
+  std::uint8_t* const above = above_buffer.data();
   for (int y0 = 0; y0 < height; y0 += 4) {
-    const int y1 = std::min(y0 + 4, height);
-    for (int x0 = 0; x0 < width; x0 += 4) {
-      const int x1 = std::min(x0 + 4, width);
-      // Most groups of a sparse plane have no significant sample near them: nothing to send.
-      if (sig.neighbourhood_empty(x0, y0, x1 - x0, y1 - y0)) continue;
+    const int rows = std::min(4, height - y0);
+    const std::uint8_t* stripe = columns.data() + static_cast<std::size_t>(y0 / 4) * w;
+    for (std::size_t x = 0; x < w; ++x) state[x + 1] = static_cast<std::uint8_t>(above[x] | ((stripe[x] & 15) << 1));
+    if (y0 + 4 < height) {
+      const std::uint8_t* next = stripe + w;
+      for (std::size_t x = 0; x < w; ++x) state[x + 1] = static_cast<std::uint8_t>(state[x + 1] | ((next[x] & 1) << 5));
+    }
+    const unsigned stripe_rows = (1u << rows) - 1;
+    for (std::size_t x0 = 0; x0 < w; x0 += 4) {
+      const std::size_t x1 = std::min(x0 + 4, w);
       const std::size_t group_start = became.size();
-      const std::size_t stride = sig.stride();
-      for (int x = x0; x < x1; ++x) {
-        std::uint8_t* cell = sig.cells() + sig.cell_of(x, y0);
-        std::size_t i = sig.index(x, y0);
-        for (int y = y0; y < y1; ++y, cell += stride, i += static_cast<std::size_t>(width)) {
-          if (cell[0] != 0 || !Significance::any_neighbour(cell, stride)) continue;
+      for (std::size_t x = x0; x < x1; ++x) {
+        unsigned column = state[x + 1];
+        const unsigned sides = state[x] | state[x + 2];
+        // Bit r: row r is insignificant and has a significant neighbour (rows r - 1 .. r + 1).
+        const unsigned around = sides | column;
+        if (((around | (around >> 1) | (around >> 2)) & ~(column >> 1) & stripe_rows) == 0) continue;
+        std::size_t i = static_cast<std::size_t>(y0) * w + x;
+        for (int r = 0; r < rows; ++r, i += w) {
+          if ((column >> (r + 1)) & 1) continue;
+          if ((((sides | column) >> r) & 7) == 0) continue;
           const std::uint32_t bit = (m[i] >> q) & 1;
           out.put(bit, 1);
           if (bit) {
-            cell[0] = 2;  // significant by SigProp
+            column |= 1u << (r + 1);
             became.push_back(i);
           }
         }
+        state[x + 1] = static_cast<std::uint8_t>(column);
       }
       for (std::size_t k = group_start; k < became.size(); ++k) out.put(negative[became[k]] ? 1 : 0, 1);
     }
+    for (std::size_t x = 0; x < w; ++x) above[x] = static_cast<std::uint8_t>((state[x + 1] >> 4) & 1);
   }
 }
 
@@ -192,25 +154,18 @@ constexpr std::array<std::uint8_t, 256> kColumnBits = [] {
 
 // The MagRef pass on plane q = p - 1 (T.814 7.5): stripes of four rows, column by column, top to
 // bottom, bit q of every sample significant in the cleanup (a magnitude at or above 2^p). Each
-// column's bits come from one byte of simd::stripe_columns and a table, and are packed 32 at a time.
-void magref_pass(std::span<const std::uint32_t> m, int width, int height, int p, MagRefPacker& out) {
-  const auto w = static_cast<std::size_t>(width);
-  thread_local std::vector<std::uint8_t> columns;
-  columns.resize(w);
+// column's bits come from its simd::stripe_columns byte and a table, and are packed 32 at a time.
+void magref_pass(std::span<const std::uint8_t> columns, MagRefPacker& out) {
   std::uint64_t bits = 0;
   int count = 0;
-  for (int y0 = 0; y0 < height; y0 += 4) {
-    simd::stripe_columns(m.data() + static_cast<std::size_t>(y0) * w, w, w, std::min(4, height - y0), p,
-                         columns.data());
-    for (const std::uint8_t column : columns) {
-      const std::uint8_t entry = kColumnBits[column];
-      bits |= static_cast<std::uint64_t>(entry & 15) << count;
-      count += entry >> 4;
-      if (count >= 32) {
-        out.put(static_cast<std::uint32_t>(bits), 32);
-        bits >>= 32;
-        count -= 32;
-      }
+  for (const std::uint8_t column : columns) {
+    const std::uint8_t entry = kColumnBits[column];
+    bits |= static_cast<std::uint64_t>(entry & 15) << count;
+    count += entry >> 4;
+    if (count >= 32) {
+      out.put(static_cast<std::uint32_t>(bits), 32);
+      bits >>= 32;
+      count -= 32;
     }
   }
   if (count > 0) out.put(static_cast<std::uint32_t>(bits), count);
@@ -227,12 +182,19 @@ RefinementSegment encode_refinement(std::span<const std::uint32_t> magnitudes, s
   if (magnitudes.size() != samples || negative.size() != samples)
     throw std::invalid_argument("HT refinement: magnitudes and signs must hold width * height samples");
   if (plane < 1 || plane > 31) throw std::invalid_argument("HT refinement: the cleanup plane must be 1..31");
-  Significance sig(magnitudes, width, height, plane);
+  // Every stripe's columns: which samples the cleanup made significant, and their bit p - 1.
+  const auto w = static_cast<std::size_t>(width);
+  thread_local std::vector<std::uint8_t> column_buffer;
+  column_buffer.resize(static_cast<std::size_t>((height + 3) / 4) * w);
+  const std::span<std::uint8_t> columns(column_buffer);
+  for (int y0 = 0; y0 < height; y0 += 4)
+    simd::stripe_columns(magnitudes.data() + static_cast<std::size_t>(y0) * w, w, w, std::min(4, height - y0), plane,
+                         columns.data() + static_cast<std::size_t>(y0 / 4) * w);
   RefinementSegment out;
   MagRefPacker magref;
-  magref_pass(magnitudes, width, height, plane, magref);
+  magref_pass(columns, magref);
   SigPropPacker sigprop;
-  sigprop_pass(magnitudes, negative, width, height, plane - 1, sig, sigprop, out.became_significant);
+  sigprop_pass(magnitudes, negative, width, height, plane - 1, columns, sigprop, out.became_significant);
   out.bytes = sigprop.finish();
   out.sigprop_bytes = out.bytes.size();
   const std::vector<std::uint8_t> backwards = magref.finish();
