@@ -44,23 +44,24 @@ class SampleGrid {
         stride_(static_cast<std::size_t>(width) + 2 * kBorder),
         exponents_(thread_exponents()) {
     exponents_.assign(stride_ * (static_cast<std::size_t>(height) + 2) + kPairOverread, 0);
+    cells_ = exponents_.data();
     for (int y = 0; y < height; ++y) {
       const std::uint8_t* length = lengths.data() + index(0, y);
       const std::uint8_t* below_top = lengths_below_top.data() + index(0, y);
-      std::uint8_t* cells = exponents_.data() + cell(0, y);
+      std::uint8_t* cells = cells_ + cell(0, y);
       const auto p = static_cast<std::uint8_t>(plane);
       for (int x = 0; x < width; ++x) cells[x] = exponent(length[x], below_top[x], p);
     }
   }
   // x in -2 .. width + 1, y in -1 .. height.
-  int exponent_at(int x, int y) const { return exponents_[cell(x, y)]; }
+  int exponent_at(int x, int y) const { return cells_[cell(x, y)]; }
   int significant(int x, int y) const { return exponent_at(x, y) != 0 ? 1 : 0; }
   // Whether the 4x2 samples from (x0, y0) are all insignificant: a pair of quads (the border
   // stands in for samples past the block's edges).
   bool pair_empty(int x0, int y0) const {
     std::uint32_t upper, lower;
-    std::memcpy(&upper, &exponents_[cell(x0, y0)], sizeof upper);
-    std::memcpy(&lower, &exponents_[cell(x0, y0 + 1)], sizeof lower);
+    std::memcpy(&upper, cells_ + cell(x0, y0), sizeof upper);
+    std::memcpy(&lower, cells_ + cell(x0, y0 + 1), sizeof lower);
     return (upper | lower) == 0;
   }
   // v_n = 2 (mu - 1) + s (T.814 7.3.8), for a significant sample.
@@ -89,6 +90,9 @@ class SampleGrid {
   int width_, plane_;
   std::size_t stride_;
   std::vector<std::uint8_t>& exponents_;
+  // Its cells, read through a plain pointer: GCC otherwise recomputes the thread_local vector's
+  // address (a call to __tls_get_addr in a shared library) at reads in the quad loop.
+  std::uint8_t* cells_ = nullptr;
 };
 
 struct QuadCoding {
