@@ -196,12 +196,9 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
       c.skipped = true;
     } else if (block.bit_planes > 0) {
       const int top = block.bit_planes - 1;
-      // The estimate's plane and the one above: the plane below is seldom chosen (on the 2048x2048
-      // mosaic at 0.75 bpp none of 800 blocks took it) and, as the costliest cleanup of the three,
-      // is left to the extensions, one plane at a time (1024x1024 mosaic at 0.75 bpp: 729 M to
-      // 709 M instructions; the files move by under 0.001 dB either way).
       const int cut = estimated_plane(stats, job.weight, threshold, bytes_per_bit);
-      const std::vector<int> planes = cut < 0 ? std::vector<int>{top} : planes_between(cut, std::min(top, cut + 1));
+      const std::vector<int> planes =
+          cut < 0 ? std::vector<int>{top} : planes_between(std::max(0, cut - 1), std::min(top, cut + 1));
       add_candidates(c, block, planes, ht_passes(params));
     }
     coded.blocks[b] = truncation_points(c, block.bit_planes, energy);
@@ -233,7 +230,8 @@ std::vector<HtExtension> ht_blocks_at_edges(const std::vector<CodedTile>& tiles,
         // the same files there and in every HT rate test case (0.954 G to 0.833 G instructions).
         const bool refinement_refused =
             k > 0 && c.point(k).passes == 1 && k < static_cast<int>(c.points.size()) && c.point(k + 1).plane == lowest;
-        if (k > 0 && c.point(k).plane == lowest && lowest > 0 && !refinement_refused) e.planes.push_back(lowest - 1);
+        if (k > 0 && c.point(k).plane == lowest && lowest > 0 && !refinement_refused)
+          for (const int p : planes_between(std::max(0, lowest - 2), lowest - 1)) e.planes.push_back(p);
       }
       if (!e.planes.empty()) out.push_back(std::move(e));
     }

@@ -228,7 +228,7 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
                  : select_for_bytes(tiles, allocator, hulls.size(), in, file_size, empty_file);
     if (ht) {
       // HT: blocks whose choice lies at the edge of the cleanups coded get the next planes coded.
-      // An edge moves by one plane down or two up a round, and the prediction is rarely further off.
+      // An edge moves by two planes a round and the prediction is rarely further off than that.
       const auto extensions = ht_blocks_at_edges(tiles, passes, lowest_slope_taken(tiles, passes, hulls));
       if (extensions.empty() || round == kHtRounds) break;
       report.recoded_blocks += extensions.size();
