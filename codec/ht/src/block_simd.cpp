@@ -112,34 +112,51 @@ void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const double* HWY_
   const hn::ScalableTag<double> dd;
   const hn::Rebind<std::int32_t, decltype(dd)> di;  // as many int32 lanes as doubles
   const std::size_t N = hn::Lanes(dd);
-  for (int p = 0; p <= planes; ++p) {
-    const auto low_bits = static_cast<std::int32_t>((std::uint64_t{1} << p) - 1);
-    const double half = p > 0 ? static_cast<double>(std::uint64_t{1} << (p - 1)) : half_at_zero;
-    const auto mask = hn::Set(di, low_bits), high_mask = hn::Not(mask), one = hn::Set(di, 1);
-    const auto h = hn::Set(dd, half);
-    auto sum = hn::Zero(dd);
-    std::size_t i = 0;
-    for (; i + N <= n; i += N) {
-      // Magnitudes are below 2^31, so they compare and mask as int32. A significant sample leaves
-      // v - (its bits from plane p up) - half = (m mod 2^p) + offset - half, exactly (every term is
-      // a multiple of 1/256 below 2^31); an insignificant one leaves v.
-      const auto m = hn::BitCast(di, hn::LoadU(hn::RebindToUnsigned<decltype(di)>(), magnitude + i));
+  // Per plane p: the squares of the samples significant at p (and of the insignificant ones among
+  // lanes that have a significant one), lane by lane; and per bit length L: the squares of the
+  // values of chunks whose largest magnitude has length L, which every plane p >= L leaves whole.
+  // A chunk is visited only for the planes below its largest length, not for every plane of the
+  // block: most of a block's samples are far smaller than its largest.
+  constexpr int kMaxPlanes = 32;
+  using V = decltype(hn::Zero(dd));
+  HWY_ALIGN double sums[(kMaxPlanes + 1) * hn::MaxLanes(dd)] = {};
+  HWY_ALIGN double whole[(kMaxPlanes + 1) * hn::MaxLanes(dd)] = {};
+  HWY_ALIGN double halves[kMaxPlanes + 1];
+  for (int p = 0; p <= planes; ++p) halves[p] = p > 0 ? static_cast<double>(std::uint64_t{1} << (p - 1)) : half_at_zero;
+  const auto one = hn::Set(di, 1);
+  std::size_t i = 0;
+  for (; i + N <= n; i += N) {
+    // Magnitudes are below 2^31, so they compare and mask as int32. A significant sample leaves
+    // v - (its bits from plane p up) - half = (m mod 2^p) + offset - half, exactly (every term is a
+    // multiple of 1/256 below 2^31); an insignificant one leaves v.
+    const auto m = hn::BitCast(di, hn::LoadU(hn::RebindToUnsigned<decltype(di)>(), magnitude + i));
+    const auto value = hn::Add(hn::PromoteTo(dd, m), hn::LoadU(dd, offset + i));
+    const int longest =
+        static_cast<int>(std::bit_width(static_cast<std::uint32_t>(hn::GetLane(hn::MaxOfLanes(di, m)))));
+    for (int p = 0; p < longest; ++p) {
+      const auto mask = hn::Set(di, static_cast<std::int32_t>((std::uint32_t{1} << p) - 1));
       const auto significant = hn::PromoteTo(dd, hn::IfThenElseZero(hn::Gt(m, mask), one));  // 1.0 or 0.0
-      const auto value = hn::Add(hn::PromoteTo(dd, m), hn::LoadU(dd, offset + i));
-      const auto dropped = hn::Add(hn::PromoteTo(dd, hn::And(m, high_mask)), h);
+      const auto dropped = hn::Add(hn::PromoteTo(dd, hn::AndNot(mask, m)), hn::Set(dd, halves[p]));
       const auto left = hn::NegMulAdd(significant, dropped, value);
-      sum = hn::MulAdd(left, left, sum);
+      V sum = hn::Load(dd, sums + static_cast<std::size_t>(p) * N);
+      hn::Store(hn::MulAdd(left, left, sum), dd, sums + static_cast<std::size_t>(p) * N);
     }
-    double total = hn::GetLane(hn::SumOfLanes(dd, sum));
-    for (; i < n; ++i) {
-      const double value = static_cast<double>(magnitude[i]) + offset[i];
+    V w = hn::Load(dd, whole + static_cast<std::size_t>(longest) * N);
+    hn::Store(hn::MulAdd(value, value, w), dd, whole + static_cast<std::size_t>(longest) * N);
+  }
+  double whole_so_far = 0;
+  for (int p = 0; p <= planes; ++p) {
+    whole_so_far += hn::GetLane(hn::SumOfLanes(dd, hn::Load(dd, whole + static_cast<std::size_t>(p) * N)));
+    error[p] = hn::GetLane(hn::SumOfLanes(dd, hn::Load(dd, sums + static_cast<std::size_t>(p) * N))) + whole_so_far;
+  }
+  for (; i < n; ++i) {
+    const double value = static_cast<double>(magnitude[i]) + offset[i];
+    for (int p = 0; p <= planes; ++p) {
+      const auto low_bits = static_cast<std::uint32_t>((std::uint64_t{1} << p) - 1);
       const double left =
-          magnitude[i] <= static_cast<std::uint32_t>(low_bits)
-              ? value
-              : value - (static_cast<double>(magnitude[i] & ~static_cast<std::uint32_t>(low_bits)) + half);
-      total += left * left;
+          magnitude[i] <= low_bits ? value : value - (static_cast<double>(magnitude[i] & ~low_bits) + halves[p]);
+      error[p] += left * left;
     }
-    error[p] = total;
   }
 }
 
