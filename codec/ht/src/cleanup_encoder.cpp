@@ -55,6 +55,8 @@ class SampleGrid {
   }
   // x in -2 .. width + 1, y in -1 .. height.
   int exponent_at(int x, int y) const { return cells_[cell(x, y)]; }
+  // The cell of (x, y), the cells of its row's next samples following it.
+  const std::uint8_t* cells_at(int x, int y) const { return cells_ + cell(x, y); }
   int significant(int x, int y) const { return exponent_at(x, y) != 0 ? 1 : 0; }
   // Whether the 4x2 samples from (x0, y0) are all insignificant: a pair of quads (the border
   // stands in for samples past the block's edges).
@@ -111,24 +113,34 @@ struct QuadCoding {
   return far | (g.significant(x0 - 1, 0) << 1) | (g.significant(x0 - 1, 1) << 2);
 }
 
+// The exponents of the four samples above a quad (x0 - 1 .. x0 + 2 on row y0 - 1), as bytes of one
+// word, the leftmost first: what a quad outside the first row takes its context and exponent
+// predictor from, read at once.
+struct RowAbove {
+  std::uint8_t e[4];
+};
+[[gnu::always_inline]] inline RowAbove row_above(const SampleGrid& g, int x0, int y0) {
+  RowAbove out;
+  std::memcpy(out.e, g.cells_at(x0 - 1, y0 - 1), sizeof out.e);
+  return out;
+}
+
 // Context c_q of a quad in any other row: from the row above (x0 - 1 .. x0 + 2) and the two
 // samples to its left.
-[[gnu::always_inline]] inline int other_row_context(const SampleGrid& g, int x0, int y0) {
-  const int north = g.significant(x0 - 1, y0 - 1) | g.significant(x0, y0 - 1);
+[[gnu::always_inline]] inline int other_row_context(const SampleGrid& g, const RowAbove& above, int x0, int y0) {
+  const int north = (above.e[0] | above.e[1]) != 0 ? 1 : 0;
+  const int east = (above.e[2] | above.e[3]) != 0 ? 1 : 0;
   const int west = g.significant(x0 - 1, y0) | g.significant(x0 - 1, y0 + 1);
-  const int east = g.significant(x0 + 1, y0 - 1) | g.significant(x0 + 2, y0 - 1);
   return north | (west << 1) | (east << 2);
 }
 
 // Exponent predictor kappa_q (T.814 7.3.7): 1 in the first row of quads; elsewhere, for a quad
 // with more than one significant sample, the largest exponent among the four samples above it
 // (x0 - 1 .. x0 + 2) less one, and at least 1.
-int exponent_predictor(const SampleGrid& g, int x0, int y0, int rho) {
-  if (y0 == 0) return 1;
+int exponent_predictor(const RowAbove& above, int rho) {
   const bool several = (rho & (rho - 1)) != 0;
   if (!several) return 1;
-  int largest = 0;
-  for (int dx = -1; dx <= 2; ++dx) largest = std::max(largest, g.exponent_at(x0 + dx, y0 - 1));
+  const int largest = std::max(std::max(above.e[0], above.e[1]), std::max(above.e[2], above.e[3]));
   return std::max(1, largest - 1);
 }
 
@@ -145,8 +157,14 @@ void analyse_quad(const SampleGrid& g, const VlcEncodingTable& table, int qx, in
     if (e[static_cast<std::size_t>(n)] != 0) q.rho |= 1 << n;
     largest = std::max(largest, e[static_cast<std::size_t>(n)]);
   }
-  q.context = qy == 0 ? initial_row_context(g, q.x0) : other_row_context(g, q.x0, q.y0);
-  const int kappa = exponent_predictor(g, q.x0, q.y0, q.rho);
+  int kappa = 1;
+  if (qy == 0) {
+    q.context = initial_row_context(g, q.x0);
+  } else {
+    const RowAbove above = row_above(g, q.x0, q.y0);
+    q.context = other_row_context(g, above, q.x0, q.y0);
+    kappa = exponent_predictor(above, q.rho);
+  }
   q.exponent_bits = std::max(largest, kappa);
   q.residual = q.exponent_bits - kappa;
   // The samples whose exponent reaches U_q: the EMB patterns may imply their top bit.
@@ -299,7 +317,8 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
         // below give for rho = 0, without them: most quads of a low-rate cleanup are empty).
         for (int k = 0; k < count; ++k) {
           const int x0 = 2 * (qx + k);
-          const int context = initial_row ? initial_row_context(grid, x0) : other_row_context(grid, x0, 2 * qy);
+          const int context = initial_row ? initial_row_context(grid, x0)
+                                          : other_row_context(grid, row_above(grid, x0, 2 * qy), x0, 2 * qy);
           if (context == 0) {
             mel.encode(false);
           } else {
