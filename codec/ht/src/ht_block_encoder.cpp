@@ -222,13 +222,14 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
       const int below_top = static_cast<int>(std::bit_width(largest & ~(std::uint32_t{1} << (length - 1))));
       ++quad_count;
       --quad_ends[static_cast<std::size_t>(length)];
+      // All four samples, without a branch: an insignificant one (length 0, or outside the block)
+      // enters and leaves every count at plane 0, so it counts for no plane.
+      sample_count += 4;
+      top_sum += 4 * static_cast<std::int64_t>(length);
+      extra_count += 4;
       for (const int sample_length : lengths) {
-        if (sample_length == 0) continue;
-        ++sample_count;
         --sample_ends[static_cast<std::size_t>(sample_length)];
-        top_sum += length;
         top_ends[static_cast<std::size_t>(sample_length)] -= length;
-        ++extra_count;
         --extra_ends[static_cast<std::size_t>(std::min(below_top, sample_length))];
       }
     }
