@@ -7,7 +7,8 @@
 // refinement passes after a cleanup on plane p: a model of their raw streams (forwards and
 // backwards in the refinement segment, each with its bit-stuffing) and of which samples SigProp
 // visits recovers plane p - 1. The decoders in j2k_ht_test and j2k_ht_rate_test then prove the
-// same through OpenJPEG, Grok and OpenJPH.
+// same through OpenJPEG, Grok and OpenJPH. Last, rate control's plane statistics (errors and
+// counts for every cleanup plane, gathered in one SIMD visit) against their definitions.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -656,6 +657,81 @@ TEST(HtBlock, RejectsWhatTheStandardDoesNot) {
   std::vector<std::int32_t> small(4, 64);
   EXPECT_THROW(codec::ht::encode_ht_block(small, 2, 2, 5), std::invalid_argument);  // 7 planes > Mb
   EXPECT_THROW(codec::ht::encode_ht_block(small, 2, 2, 8, 8), std::invalid_argument);
+}
+
+// ---- Plane statistics --------------------------------------------------------------------------
+
+// What a cleanup from each plane leaves and counts, from the definitions in ht_block_encoder.h,
+// sample by sample and plane by plane: the squared error with mid-point reconstruction (a sample
+// below 2^p leaves its value; one at or above it (m mod 2^p) + fraction - half, half = 2^(p-1), or
+// at p = 0 one half for irreversible coding and 0 otherwise), the quads and samples significant
+// at p, and each significant sample's U_q = bit length of 2 (L >> p) - 1, L its quad's largest
+// magnitude (T.814 7.3.7). The last entry is for nothing coded: the block's energy.
+std::vector<codec::ht::PlaneStatistics> statistics_by_definition(const std::vector<std::int32_t>& block,
+                                                                 const std::vector<std::uint8_t>& fractions, int width,
+                                                                 int height, int planes) {
+  std::vector<codec::ht::PlaneStatistics> out(static_cast<std::size_t>(planes) + 1);
+  auto magnitude = [&](int x, int y) -> std::uint32_t {
+    if (x >= width || y >= height) return 0;
+    const std::int32_t c = block[static_cast<std::size_t>(y * width + x)];
+    return static_cast<std::uint32_t>(c < 0 ? -static_cast<std::int64_t>(c) : c);
+  };
+  for (int p = 0; p <= planes; ++p) {
+    codec::ht::PlaneStatistics& s = out[static_cast<std::size_t>(p)];
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const std::uint32_t m = magnitude(x, y);
+        const double v = m + (fractions.empty() ? 0.0 : fractions[static_cast<std::size_t>(y * width + x)] / 256.0);
+        double e = v;
+        if (p < planes && (m >> p) != 0) {
+          const double half = p > 0 ? std::ldexp(1.0, p - 1) : (fractions.empty() ? 0.0 : 0.5);
+          e = v - (std::ldexp(static_cast<double>(m >> p), p) + half);
+        }
+        s.error += e * e;
+      }
+    if (p == planes) continue;
+    for (int y0 = 0; y0 < height; y0 += 2)
+      for (int x0 = 0; x0 < width; x0 += 2) {
+        const std::uint32_t quad[4] = {magnitude(x0, y0), magnitude(x0, y0 + 1), magnitude(x0 + 1, y0),
+                                       magnitude(x0 + 1, y0 + 1)};
+        const std::uint32_t largest = *std::max_element(quad, quad + 4);
+        if ((largest >> p) == 0) continue;
+        s.significant_quads += 1;
+        const int u = static_cast<int>(std::bit_width(2 * (largest >> p) - 1));
+        for (const std::uint32_t m : quad)
+          if ((m >> p) != 0) s.significant_samples += 1, s.magnitude_bits += u;
+      }
+  }
+  return out;
+}
+
+// ht::plane_statistics (rate control's estimates, gathered in one visit per sample with SIMD
+// error sums over each chunk's own planes and difference arrays for the counts) agrees with the
+// definitions on random blocks of every shape and bit-plane count, with and without fractions.
+TEST(HtBlock, PlaneStatisticsMatchTheirDefinitions) {
+  std::mt19937 rng(20261127);
+  for (const auto& [w, h] : all_shapes()) {
+    for (int planes : {0, 1, 2, 5, 9, 17, 30, 31}) {
+      const auto block = random_block(rng, w, h, planes);
+      for (const bool irreversible : {false, true}) {
+        std::vector<std::uint8_t> fractions;
+        if (irreversible)
+          for (std::size_t i = 0; i < block.size(); ++i) fractions.push_back(static_cast<std::uint8_t>(rng()));
+        SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + ", " + std::to_string(planes) + " planes" +
+                     (irreversible ? ", with fractions" : ""));
+        const auto got = codec::ht::plane_statistics(codec::ht::load_ht_block(block, w, h, fractions));
+        const auto want = statistics_by_definition(block, fractions, w, h, planes);
+        ASSERT_EQ(got.size(), want.size());
+        for (std::size_t p = 0; p < want.size(); ++p) {
+          SCOPED_TRACE("plane " + std::to_string(p));
+          EXPECT_NEAR(got[p].error, want[p].error, 1e-12 * std::max(1.0, want.back().error));
+          EXPECT_EQ(got[p].significant_quads, want[p].significant_quads);
+          EXPECT_EQ(got[p].significant_samples, want[p].significant_samples);
+          EXPECT_EQ(got[p].magnitude_bits, want[p].magnitude_bits);
+        }
+      }
+    }
+  }
 }
 
 }  // namespace
