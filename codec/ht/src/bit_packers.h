@@ -5,12 +5,14 @@
 // The three bit-streams of an HT cleanup segment (T.814 7.1) and how their bytes are stuffed so
 // that no byte pair 0xFF, 0x90..0xFF (a marker) appears in the codestream. The byte layout is
 // MagSgn bytes forwards, MEL bytes forwards, then the VLC bytes backwards from the segment's end.
+// The refinement segment's two streams are packed alike: SigProp as MagSgn, MagRef as the VLC.
 
 namespace codec::ht {
 
-// MagSgn (T.814 7.1.2): bits packed least significant first; a byte following 0xFF carries only
-// 7 bits, its most significant bit a stuffed 0.
-class MagSgnPacker {
+// Bits packed least significant first, forwards; a byte following 0xFF carries only 7 bits, its
+// most significant bit a stuffed 0. MagSgn (T.814 7.1.2) and SigProp (7.1.5) are such streams; they
+// differ in how they end.
+class ForwardStuffedPacker {
  public:
   // The low `count` bits of `bits`, least significant first (count <= 32).
   void put(std::uint32_t bits, int count) {
@@ -19,6 +21,24 @@ class MagSgnPacker {
     used_ += count;
     while (used_ >= capacity_) flush_byte();
   }
+
+ protected:
+  // The next `capacity_` bits (8, or 7 after 0xFF: bit 7 is then a stuffed 0) as one byte.
+  void flush_byte() {
+    const auto byte = static_cast<std::uint8_t>(acc_ & ((1u << capacity_) - 1));
+    bytes_.push_back(byte);
+    acc_ >>= capacity_;
+    used_ -= capacity_;
+    capacity_ = byte == 0xFF ? 7 : 8;
+  }
+  std::vector<std::uint8_t> bytes_;
+  std::uint64_t acc_ = 0;  // bits not yet in a byte, the next one lowest
+  int used_ = 0, capacity_ = 8;
+};
+
+// MagSgn (T.814 7.1.2).
+class MagSgnPacker : public ForwardStuffedPacker {
+ public:
   // Pads the last byte with 1s (a decoder reads 0xFF past the segment's MagSgn part, so the pad
   // is what it would read anyway) and drops a final 0xFF, which the decoder's padding reproduces
   // and which would otherwise form a marker with a following MEL or VLC byte.
@@ -31,19 +51,19 @@ class MagSgnPacker {
     }
     return std::move(bytes_);
   }
+};
 
- private:
-  // The next `capacity_` bits (8, or 7 after 0xFF: bit 7 is then a stuffed 0) as one byte.
-  void flush_byte() {
-    const auto byte = static_cast<std::uint8_t>(acc_ & ((1u << capacity_) - 1));
-    bytes_.push_back(byte);
-    acc_ >>= capacity_;
-    used_ -= capacity_;
-    capacity_ = byte == 0xFF ? 7 : 8;
+// SigProp (T.814 7.1.5), at the start of the HT refinement segment.
+class SigPropPacker : public ForwardStuffedPacker {
+ public:
+  // A decoder reads 0s past the bits it needs, so the last byte is padded with 0s; a last 0xFF is
+  // followed by a 0 byte (a stuffed byte of padding): the MagRef bytes that follow in the segment,
+  // or the next packet's, must not form a marker with it.
+  std::vector<std::uint8_t> finish() {
+    if (used_ > 0) bytes_.push_back(static_cast<std::uint8_t>(acc_));
+    if (!bytes_.empty() && bytes_.back() == 0xFF) bytes_.push_back(0x00);
+    return std::move(bytes_);
   }
-  std::vector<std::uint8_t> bytes_;
-  std::uint64_t acc_ = 0;  // bits not yet in a byte, the next one lowest
-  int used_ = 0, capacity_ = 8;
 };
 
 // The MEL bit packer (T.814 7.1.3): bits most significant first; after 0xFF, 7 bits.
@@ -110,6 +130,10 @@ class MelEncoder {
 class VlcPacker {
  public:
   VlcPacker() : bytes_{0xFF} {}
+  // The same stream without Scup's placeholder bits: MagRef's (T.814 7.1.6), at the end of the HT
+  // refinement segment, which the decoder starts as if a byte above 0x8F preceded it.
+  struct WithoutScup {};
+  explicit VlcPacker(WithoutScup) : acc_(0), used_(0) {}
   // The low `count` bits of `bits`, least significant first (count <= 32).
   void put(std::uint32_t bits, int count) {
     if (count == 0) return;
@@ -132,6 +156,12 @@ class VlcPacker {
   // Whether the pending byte is the one that holds Scup's low nibble (then it may not be fused
   // with the MEL's last byte: the nibble would overwrite MEL bits).
   bool partial_is_scup_byte() const { return bytes_.size() == 1; }
+  // For a stream without Scup: its bytes in the order written (the segment's last byte first), the
+  // pending one 0-padded (a decoder reads 0s past the end).
+  std::vector<std::uint8_t> finish_without_scup() {
+    if (has_partial_byte()) bytes_.push_back(partial_byte());
+    return std::move(bytes_);
+  }
   // Bytes in the order written (the segment's last byte first).
   std::vector<std::uint8_t>& bytes() { return bytes_; }
 

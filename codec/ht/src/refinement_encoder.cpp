@@ -6,76 +6,11 @@
 #include <string>
 #include <vector>
 
+#include "bit_packers.h"
 #include "block_simd.h"
 
 namespace codec::ht {
 namespace {
-
-// SigProp bits (T.814 7.1.5): forwards, least significant bit first; a byte after 0xFF carries
-// only 7 bits (its most significant bit a stuffed 0), as in MagSgn. A decoder reads 0s past the
-// bits it needs, so the last byte is padded with 0s.
-class SigPropPacker {
- public:
-  // The low `count` bits of `bits` (count <= 32, no bit set above them), least significant first.
-  void put(std::uint32_t bits, int count) {
-    acc_ |= static_cast<std::uint64_t>(bits) << used_;
-    used_ += count;
-    while (used_ >= capacity_) {
-      const auto byte = static_cast<std::uint8_t>(acc_ & ((1u << capacity_) - 1));
-      bytes_.push_back(byte);
-      acc_ >>= capacity_;
-      used_ -= capacity_;
-      capacity_ = byte == 0xFF ? 7 : 8;
-    }
-  }
-  // A last 0xFF is followed by a 0 byte (a stuffed byte of padding): the MagRef bytes that follow
-  // in the segment, or the next packet's, must not form a marker with it.
-  std::vector<std::uint8_t> finish() {
-    if (used_ > 0) bytes_.push_back(static_cast<std::uint8_t>(acc_));
-    if (!bytes_.empty() && bytes_.back() == 0xFF) bytes_.push_back(0x00);
-    return std::move(bytes_);
-  }
-
- private:
-  std::vector<std::uint8_t> bytes_;
-  std::uint64_t acc_ = 0;  // bits not yet in a byte, the next one lowest
-  int used_ = 0, capacity_ = 8;
-};
-
-// MagRef bits (T.814 7.1.6): least significant bit first into bytes laid out backwards from the
-// segment's end, with the VLC's stuffing rule: a byte after one above 0x8F whose low 7 bits are
-// all 1 carries a stuffed 0 in bit 7 (and so only 7 bits). The decoder starts as if a byte above
-// 0x8F preceded the first, so the segment never ends in 0xFF. Past the end it reads 0s: the last
-// byte is 0-padded.
-class MagRefPacker {
- public:
-  // As SigPropPacker::put.
-  void put(std::uint32_t bits, int count) {
-    acc_ |= static_cast<std::uint64_t>(bits) << used_;
-    used_ += count;
-    while (used_ >= 8) {
-      auto byte = static_cast<std::uint32_t>(acc_ & 0xFF);
-      const int taken = last_ > 0x8F && (byte & 0x7F) == 0x7F ? 7 : 8;
-      byte &= (1u << taken) - 1;
-      bytes_.push_back(static_cast<std::uint8_t>(byte));
-      last_ = byte;
-      acc_ >>= taken;
-      used_ -= taken;
-    }
-  }
-  // Bytes in the order written (the segment's last byte first). Seven pending bits that would be
-  // stuffed give the same byte as the stuffing would (0x7F).
-  std::vector<std::uint8_t> finish() {
-    if (used_ > 0) bytes_.push_back(static_cast<std::uint8_t>(acc_));
-    return std::move(bytes_);
-  }
-
- private:
-  std::vector<std::uint8_t> bytes_;
-  std::uint64_t acc_ = 0;
-  int used_ = 0;
-  std::uint32_t last_ = 0xFF;
-};
 
 // The SigProp pass on plane q = p - 1 (T.814 7.4): stripes of four rows, each in groups of four
 // columns; in a group, column by column and top to bottom, every sample not significant in the
@@ -153,7 +88,7 @@ constexpr std::array<std::uint8_t, 256> kColumnBits = [] {
 // The MagRef pass on plane q = p - 1 (T.814 7.5): stripes of four rows, column by column, top to
 // bottom, bit q of every sample significant in the cleanup (a magnitude at or above 2^p). Each
 // column's bits come from its simd::stripe_columns byte and a table, and are packed 32 at a time.
-void magref_pass(std::span<const std::uint8_t> columns, MagRefPacker& out) {
+void magref_pass(std::span<const std::uint8_t> columns, VlcPacker& out) {
   std::uint64_t bits = 0;
   int count = 0;
   for (const std::uint8_t column : columns) {
@@ -189,13 +124,13 @@ RefinementSegment encode_refinement(std::span<const std::uint32_t> magnitudes, s
     simd::stripe_columns(magnitudes.data() + static_cast<std::size_t>(y0) * w, w, w, std::min(4, height - y0), plane,
                          columns.data() + static_cast<std::size_t>(y0 / 4) * w);
   RefinementSegment out;
-  MagRefPacker magref;
+  VlcPacker magref(VlcPacker::WithoutScup{});
   magref_pass(columns, magref);
   SigPropPacker sigprop;
   sigprop_pass(magnitudes, negative, width, height, plane - 1, columns, sigprop, out.became_significant);
   out.bytes = sigprop.finish();
   out.sigprop_bytes = out.bytes.size();
-  const std::vector<std::uint8_t> backwards = magref.finish();
+  const std::vector<std::uint8_t> backwards = magref.finish_without_scup();
   out.bytes.insert(out.bytes.end(), backwards.rbegin(), backwards.rend());
   return out;
 }
