@@ -75,6 +75,24 @@ int estimated_plane(const std::vector<ht::PlaneStatistics>& stats, double weight
   return points == 0 ? -1 : planes - hull[points - 1].passes;
 }
 
+// The threshold at which the length model, at `bytes_per_bit`, has a sample of blocks (scaled up)
+// spend the target's bytes or leave its error: a guess made before any of them is coded.
+double model_threshold(const std::vector<BlockJob>& jobs, const BlockSample& sample,
+                       const std::vector<std::vector<ht::PlaneStatistics>>& stats, double bytes_per_bit,
+                       const Tier1Target& target) {
+  std::vector<std::vector<rate::HullPoint>> hulls(sample.blocks.size());
+  double energy = 0;
+  for (std::size_t k = 0; k < sample.blocks.size(); ++k) {
+    const double weight = jobs[sample.blocks[k]].weight;
+    if (stats[k].size() > 1) hulls[k] = rate::convex_hull(estimated_points(stats[k], bytes_per_bit), weight);
+    energy += sample.scale[k] * stats[k].back().error * weight;
+  }
+  return threshold_for_target(hulls, sample.scale, energy, target);
+}
+
+// The model's scale were it exact: a byte per 8 bits.
+constexpr double kNominalBytesPerModelBit = 1.0 / 8;
+
 std::vector<int> planes_between(int lowest, int highest) {
   std::vector<int> out;
   for (int p = highest; p >= lowest; --p) out.push_back(p);
@@ -137,10 +155,12 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
     return;
   }
   // The sample predicts the threshold in two steps, as EBCOT's pass skipping does (tile_coder.h):
-  // the sparser presample is coded from every plane and gives a first estimate; the rest of the
-  // sample is coded from its top plane down to the plane the length model puts at an eighth of
-  // that estimate, and one more. Its lowest planes, the costliest cleanups (the most significant
-  // samples), are left out. Should the prediction fall within reach of where those blocks stop,
+  // the sparser presample gives a first estimate, and the rest of the sample is coded from its top
+  // plane down to the plane the length model puts at an eighth of that estimate, and one more. Its
+  // lowest planes, the costliest cleanups (the most significant samples), are left out. The
+  // presample itself (which holds the lowest resolutions whole, blocks of many planes) is coded
+  // alike, down from a guess: the threshold at which the model, at its nominal scale, has the
+  // presample meet the target. Should a prediction fall within reach of where its blocks stop,
   // they are coded from every plane after all and it is made again.
   const BlockSample sample = sample_blocks(coded.jobs, kSampleStride);
   const BlockSample presample = sample_blocks(coded.jobs, kPresampleStride);
@@ -149,23 +169,46 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
   std::vector<std::size_t> sample_rest;
   for (std::size_t i : sample.blocks)
     if (!in_presample[i]) sample_rest.push_back(i);
-  std::vector<std::vector<ht::PlaneStatistics>> presample_stats, rest_stats;
-  code_planes(presample.blocks, every_plane, &presample_stats);
-  const double first_estimate = predict_threshold(coded.jobs, coded, presample, target);
+  // Down to the plane the model, at `bytes_per_bit`, puts at `reach`, and one more.
+  auto planes_down_to = [&](double reach, double bytes_per_bit) -> PlanesOf {
+    return [&coded, reach, bytes_per_bit](std::size_t b, const std::vector<ht::PlaneStatistics>& s) {
+      const int top = static_cast<int>(s.size()) - 2;
+      if (top < 0) return std::vector<int>{};
+      const int cut = estimated_plane(s, coded.jobs[b].weight, reach, bytes_per_bit);
+      return planes_between(cut < 0 ? top : std::max(0, cut - 1), top);
+    };
+  };
+  // The presample's blocks stay loaded until its first estimate is made.
+  std::vector<ht::HtBlock> presample_blocks(presample.blocks.size());
+  std::vector<std::vector<ht::PlaneStatistics>> presample_stats(presample.blocks.size()), rest_stats;
+  pool.parallel_for(presample.blocks.size(), [&](std::size_t k) {
+    presample_blocks[k] = load_ht_block(coded, coded.jobs[presample.blocks[k]], params);
+    presample_stats[k] = ht::plane_statistics(presample_blocks[k]);
+  });
+  auto code_presample = [&](const PlanesOf& planes_of) {
+    pool.parallel_for(presample.blocks.size(), [&](std::size_t k) {
+      const std::size_t b = presample.blocks[k];
+      const std::vector<ht::PlaneStatistics>& s = presample_stats[k];
+      add_candidates(coded.ht_candidates[b], presample_blocks[k], planes_of(b, s), ht_passes(params));
+      coded.blocks[b] = truncation_points(coded.ht_candidates[b], presample_blocks[k].bit_planes, s.back().error);
+    });
+  };
+  const double guess = model_threshold(coded.jobs, presample, presample_stats, kNominalBytesPerModelBit, target);
+  code_presample(planes_down_to(guess / kPresampleMargin, kNominalBytesPerModelBit));
+  double first_estimate = predict_threshold(coded.jobs, coded, presample, target);
+  if (first_estimate < guess / (kPresampleMargin / 2)) {
+    code_presample(every_plane);
+    first_estimate = predict_threshold(coded.jobs, coded, presample, target);
+  }
+  presample_blocks.clear();
   const double first_bytes_per_bit = bytes_per_model_bit(coded, presample.blocks, presample_stats, first_estimate);
-  const double reach = first_estimate / kPresampleMargin;
-  code_planes(
-      sample_rest,
-      [&](std::size_t b, const std::vector<ht::PlaneStatistics>& s) {
-        const int top = static_cast<int>(s.size()) - 2;
-        if (top < 0) return std::vector<int>{};
-        const int cut = estimated_plane(s, coded.jobs[b].weight, reach, first_bytes_per_bit);
-        return planes_between(cut < 0 ? top : std::max(0, cut - 1), top);
-      },
-      &rest_stats);
+  code_planes(sample_rest, planes_down_to(first_estimate / kPresampleMargin, first_bytes_per_bit), &rest_stats);
   double threshold = predict_threshold(coded.jobs, coded, sample, target);
-  if (threshold < first_estimate / (kPresampleMargin / 2)) {
-    code_planes(sample_rest, every_plane, nullptr);
+  const bool rest_too_shallow = threshold < first_estimate / (kPresampleMargin / 2);
+  const bool presample_too_shallow = threshold < guess / (kPresampleMargin / 2);
+  if (rest_too_shallow || presample_too_shallow) {
+    if (rest_too_shallow) code_planes(sample_rest, every_plane, nullptr);
+    if (presample_too_shallow) code_planes(presample.blocks, every_plane, nullptr);
     threshold = predict_threshold(coded.jobs, coded, sample, target);
   }
   coded.stop_threshold = threshold;

@@ -404,23 +404,16 @@ BlockSample sample_blocks(const std::vector<BlockJob>& jobs, std::size_t stride)
 // Predicts the final slope threshold from a sample of blocks coded (in full wherever the hulls are
 // looked at): the threshold at which the sample, scaled up, spends the tile's bytes, or leaves the
 // tile's squared error.
-double predict_threshold(const std::vector<BlockJob>& jobs, const CodedTile& coded, const BlockSample& sample,
-                         const Tier1Target& target) {
-  std::vector<std::vector<rate::HullPoint>> hulls;
-  double energy = 0;
-  for (std::size_t k = 0; k < sample.blocks.size(); ++k) {
-    const BlockJob& j = jobs[sample.blocks[k]];
-    hulls.push_back(rate::convex_hull(coded.blocks[j.block_index].passes, j.weight));
-    energy += sample.scale[k] * coded.blocks[j.block_index].energy * j.weight;
-  }
-  // Bytes spent, and squared error left, by the whole tile at a threshold, as the sample tells.
+double threshold_for_target(std::span<const std::vector<rate::HullPoint>> hulls, std::span<const double> scale,
+                            double energy, const Tier1Target& target) {
+  // Bytes spent, and squared error left, by the whole tile at a threshold, as the hulls tell.
   auto at = [&](double threshold) {
     double bytes = 0, kept = 0;
     for (std::size_t k = 0; k < hulls.size(); ++k) {
       const std::size_t points = rate::points_at_or_above(hulls[k], threshold);
       if (points > 0)
-        bytes += sample.scale[k] * static_cast<double>(hulls[k][points - 1].bytes),
-            kept += sample.scale[k] * hulls[k][points - 1].distortion;
+        bytes += scale[k] * static_cast<double>(hulls[k][points - 1].bytes),
+            kept += scale[k] * hulls[k][points - 1].distortion;
     }
     return std::pair{bytes, energy - kept};
   };
@@ -433,6 +426,18 @@ double predict_threshold(const std::vector<BlockJob>& jobs, const CodedTile& cod
     (too_much ? lo : hi) = mid;
   }
   return std::exp2(hi);
+}
+
+double predict_threshold(const std::vector<BlockJob>& jobs, const CodedTile& coded, const BlockSample& sample,
+                         const Tier1Target& target) {
+  std::vector<std::vector<rate::HullPoint>> hulls;
+  double energy = 0;
+  for (std::size_t k = 0; k < sample.blocks.size(); ++k) {
+    const BlockJob& j = jobs[sample.blocks[k]];
+    hulls.push_back(rate::convex_hull(coded.blocks[j.block_index].passes, j.weight));
+    energy += sample.scale[k] * coded.blocks[j.block_index].energy * j.weight;
+  }
+  return threshold_for_target(hulls, sample.scale, energy, target);
 }
 
 namespace {

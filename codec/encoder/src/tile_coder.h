@@ -2,12 +2,14 @@
 #include <cstdint>
 #include <memory>
 #include <new>
+#include <span>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "codec/encoder/params.h"
 #include "codec/encoder/source_image.h"
+#include "codec/rate/hull.h"
 #include "codec/structure/tile.h"
 #include "codec/ht/ht_block_encoder.h"
 #include "codec/t1/block_encoder.h"
@@ -145,6 +147,12 @@ BlockSample sample_blocks(const std::vector<BlockJob>& jobs, std::size_t stride)
 // leaves the tile's squared error (`target`), from the blocks' passes as rate control sees them.
 double predict_threshold(const std::vector<BlockJob>& jobs, const CodedTile& coded, const BlockSample& sample,
                          const Tier1Target& target);
+
+// The same from any hulls: the slope threshold at which blocks with these hulls, each standing for
+// `scale` blocks' worth, spend the target's bytes or leave its squared error; `energy` is their
+// weighted energy, scaled alike.
+double threshold_for_target(std::span<const std::vector<rate::HullPoint>> hulls, std::span<const double> scale,
+                            double energy, const Tier1Target& target);
 
 // Code-blocks of the whole image, for progress reports.
 std::size_t count_code_blocks(const CodingPlan& plan);
