@@ -34,8 +34,8 @@ struct HtExtension {
 };
 
 // The blocks of an allocation (`passes`, rate_control.h) that may be cut short by what was coded:
-// one whose choice is the highest cleanup coded (or nothing) while higher planes are uncoded (a
-// cleanup from higher up might be worth its bytes at the threshold where this one is not), one
+// one whose choice is the highest cleanup coded alone (or nothing) while higher planes are uncoded
+// (a cleanup from higher up might be worth its bytes at the threshold where this one is not), one
 // whose choice is the lowest cleanup coded above plane 0 (or its refinement), and one skipped
 // whose energy, bought with one byte, reaches `lowest_slope` (the lowest slope the allocation
 // takes).
