@@ -4,6 +4,7 @@
 #include <hwy/foreach_target.h>              // must precede highway.h
 #include <hwy/highway.h>
 
+#include <algorithm>
 #include <bit>
 
 #include "block_simd.h"
@@ -221,6 +222,82 @@ void StripeColumns(const std::uint32_t* HWY_RESTRICT stripe, std::size_t width, 
   }
 }
 
+std::size_t QuadCounts(const std::uint8_t* HWY_RESTRICT lengths, const std::uint8_t* HWY_RESTRICT tops,
+                       std::size_t width, std::size_t height, int planes, std::int64_t* HWY_RESTRICT quads,
+                       std::int64_t* HWY_RESTRICT samples, std::int64_t* HWY_RESTRICT top_sums,
+                       std::int64_t* HWY_RESTRICT extras) {
+  const hn::ScalableTag<std::uint16_t> d16;  // a lane per quad: its two columns' bytes
+  // A quad's two columns as one 16-bit lane, the left one low (little-endian, as every target this
+  // project builds for).
+  const auto load_pairs = [&](const std::uint8_t* bytes) {
+    return hn::LoadU(d16, reinterpret_cast<const std::uint16_t*>(bytes));
+  };
+  const std::size_t N = hn::Lanes(d16);
+  const std::size_t covered = width / (2 * N) * (2 * N);
+  if (covered == 0 || planes <= 0) return covered;
+  // Per plane, four lane-wise sums: quads, samples, quad lengths and extra bits over the samples
+  // significant at that plane. A lane adds at most 4 * 31 a row pair, and a block has at most 512
+  // row pairs, so 16 bits hold them.
+  constexpr int kMaxPlanes = 32;
+  constexpr std::size_t kSums = 4;
+  HWY_ALIGN std::uint16_t sums[kSums * kMaxPlanes * hn::MaxLanes(d16)];
+  std::fill(sums, sums + kSums * static_cast<std::size_t>(planes) * N, std::uint16_t{0});
+  const auto low_byte = hn::Set(d16, 0xFF);
+  int deepest = 0;  // planes below the largest quad length seen
+  for (std::size_t y0 = 0; y0 < height; y0 += 2) {
+    const std::uint8_t* upper = lengths + y0 * width;
+    const std::uint8_t* upper_tops = tops + y0 * width;
+    const bool has_lower = y0 + 1 < height;
+    for (std::size_t x = 0; x < covered; x += 2 * N) {
+      const auto u = load_pairs(upper + x);
+      const auto tu = load_pairs(upper_tops + x);
+      const auto l = has_lower ? load_pairs(upper + width + x) : hn::Zero(d16);
+      const auto tl = has_lower ? load_pairs(upper_tops + width + x) : hn::Zero(d16);
+      // The quad's four samples: its columns are each lane's low and high byte.
+      const auto a = hn::And(u, low_byte), b = hn::ShiftRight<8>(u);
+      const auto c = hn::And(l, low_byte), d = hn::ShiftRight<8>(l);
+      const auto length = hn::Max(hn::Max(a, b), hn::Max(c, d));
+      const int longest = static_cast<int>(hn::GetLane(hn::MaxOfLanes(d16, length)));
+      if (longest == 0) continue;
+      deepest = std::max(deepest, longest);
+      // t of the quad's largest magnitude: the largest t among its samples of the quad's length.
+      const auto below_top = hn::Max(hn::Max(hn::IfThenElseZero(hn::Eq(a, length), hn::And(tu, low_byte)),
+                                             hn::IfThenElseZero(hn::Eq(b, length), hn::ShiftRight<8>(tu))),
+                                     hn::Max(hn::IfThenElseZero(hn::Eq(c, length), hn::And(tl, low_byte)),
+                                             hn::IfThenElseZero(hn::Eq(d, length), hn::ShiftRight<8>(tl))));
+      const auto ea = hn::Min(below_top, a), eb = hn::Min(below_top, b);
+      const auto ec = hn::Min(below_top, c), ed = hn::Min(below_top, d);
+      for (int p = 0; p < longest; ++p) {
+        const auto plane = hn::Set(d16, static_cast<std::uint16_t>(p));
+        std::uint16_t* at = sums + static_cast<std::size_t>(p) * kSums * N;
+        // A true mask is all ones, -1: subtracting it counts one.
+        const auto one_if = [&](auto v) { return hn::VecFromMask(d16, hn::Gt(v, plane)); };
+        hn::Store(hn::Sub(hn::Load(d16, at), one_if(length)), d16, at);
+        hn::Store(hn::Sub(hn::Sub(hn::Sub(hn::Sub(hn::Load(d16, at + N), one_if(a)), one_if(b)), one_if(c)), one_if(d)),
+                  d16, at + N);
+        const auto lengths_of_significant = hn::Add(
+            hn::Add(hn::IfThenElseZero(hn::Gt(a, plane), length), hn::IfThenElseZero(hn::Gt(b, plane), length)),
+            hn::Add(hn::IfThenElseZero(hn::Gt(c, plane), length), hn::IfThenElseZero(hn::Gt(d, plane), length)));
+        hn::Store(hn::Add(hn::Load(d16, at + 2 * N), lengths_of_significant), d16, at + 2 * N);
+        hn::Store(hn::Sub(hn::Sub(hn::Sub(hn::Sub(hn::Load(d16, at + 3 * N), one_if(ea)), one_if(eb)), one_if(ec)),
+                          one_if(ed)),
+                  d16, at + 3 * N);
+      }
+    }
+  }
+  for (int p = 0; p < deepest; ++p) {
+    const std::uint16_t* at = sums + static_cast<std::size_t>(p) * kSums * N;
+    std::int64_t totals[kSums] = {};
+    for (std::size_t k = 0; k < kSums; ++k)
+      for (std::size_t lane = 0; lane < N; ++lane) totals[k] += at[k * N + lane];
+    quads[p] += totals[0];
+    samples[p] += totals[1];
+    top_sums[p] += totals[2];
+    extras[p] += totals[3];
+  }
+  return covered;
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace codec::ht::simd
 HWY_AFTER_NAMESPACE();
@@ -232,10 +309,18 @@ HWY_EXPORT(PlaneErrors);
 HWY_EXPORT(CleanupErrorSums);
 HWY_EXPORT(BitLengths);
 HWY_EXPORT(StripeColumns);
+HWY_EXPORT(QuadCounts);
 
 void stripe_columns(const std::uint32_t* stripe, std::size_t width, std::size_t stride, int rows, int p,
                     std::uint8_t* columns) {
   HWY_DYNAMIC_DISPATCH(StripeColumns)(stripe, width, stride, rows, p, columns);
+}
+
+std::size_t quad_counts(const std::uint8_t* lengths, const std::uint8_t* lengths_below_top, std::size_t width,
+                        std::size_t height, int planes, std::int64_t* quads, std::int64_t* samples,
+                        std::int64_t* top_sums, std::int64_t* extras) {
+  return HWY_DYNAMIC_DISPATCH(QuadCounts)(lengths, lengths_below_top, width, height, planes, quads, samples, top_sums,
+                                          extras);
 }
 
 void bit_lengths(const std::uint32_t* magnitude, std::size_t n, std::uint8_t* length, std::uint8_t* length_below_top) {

@@ -36,6 +36,18 @@ void plane_errors(const std::uint32_t* magnitude, const double* offset, std::siz
 // (HtBlock::lengths, lengths_below_top).
 void bit_lengths(const std::uint32_t* magnitude, std::size_t n, std::uint8_t* length, std::uint8_t* length_below_top);
 
+// plane_statistics' counts over the quads of a block's leftmost columns, as many as whole SIMD
+// chunks of quads cover (a multiple of twice the lane count; 0 for a narrower block), which it
+// returns; the caller counts the rest. `lengths` and `lengths_below_top` are HtBlock's (row by row,
+// `width` apart). For each plane p < `planes` it adds: to quads[p] the quads whose largest bit length
+// l exceeds p; to samples[p] the samples whose own length exceeds p; to top_sums[p] the sum of l
+// over those samples; and to extras[p] the samples whose min(t, own length) exceeds p, t the bit
+// length of the quad's largest magnitude without its top bit. A missing row below the last odd one
+// counts as insignificant samples.
+std::size_t quad_counts(const std::uint8_t* lengths, const std::uint8_t* lengths_below_top, std::size_t width,
+                        std::size_t height, int planes, std::int64_t* quads, std::int64_t* samples,
+                        std::int64_t* top_sums, std::int64_t* extras);
+
 // For MagRef on plane p - 1 (p >= 1): per column of a stripe of `rows` (1..4) rows of `width`
 // magnitudes (row r at stripe + r * stride), one byte: bit r set where row r's magnitude is
 // significant at plane p (at or above 2^p), and bit 4 + r its bit p - 1 where it is.

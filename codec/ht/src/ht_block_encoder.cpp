@@ -201,16 +201,22 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
   // p >= t). So every count is a sum of terms constant or linear in p over a range of planes, and
   // is gathered with difference arrays in one visit per sample: quads[p] and samples[p] count,
   // bits[p] = top[p] - p * samples[p] + extra[p].
+  // The columns that whole SIMD chunks of quads cover are counted plane by plane in SIMD
+  // (simd::quad_counts); the rest, narrow blocks' and the columns past the last chunk, so.
   const auto n = static_cast<std::size_t>(planes) + 1;
   std::vector<std::int64_t> quad_ends(n, 0), sample_ends(n, 0), top_ends(n, 0), extra_ends(n, 0);
-  std::int64_t quad_count = 0, sample_count = 0, top_sum = 0, extra_count = 0;
+  std::vector<std::int64_t> quads(n, 0), samples(n, 0), tops(n, 0), extras(n, 0);
   const auto w = static_cast<std::size_t>(b.width);
-  for (int y0 = 0; y0 < b.height; y0 += 2) {
+  const std::size_t covered =
+      simd::quad_counts(b.lengths.data(), b.lengths_below_top.data(), w, static_cast<std::size_t>(b.height), planes,
+                        quads.data(), samples.data(), tops.data(), extras.data());
+  std::int64_t quad_count = 0, sample_count = 0, top_sum = 0, extra_count = 0;
+  for (int y0 = 0; y0 < b.height && covered < w; y0 += 2) {
     const std::uint32_t* upper = b.magnitudes.data() + static_cast<std::size_t>(y0) * w;
     const std::uint32_t* lower = y0 + 1 < b.height ? upper + w : nullptr;  // none below the last odd row
     const std::uint8_t* upper_lengths = b.lengths.data() + static_cast<std::size_t>(y0) * w;
     const std::uint8_t* lower_lengths = upper_lengths + w;
-    for (int x0 = 0; x0 < b.width; x0 += 2) {
+    for (int x0 = static_cast<int>(covered); x0 < b.width; x0 += 2) {
       const bool right = x0 + 1 < b.width;
       const std::uint32_t m[4] = {upper[x0], lower ? lower[x0] : 0u, right ? upper[x0 + 1] : 0u,
                                   lower && right ? lower[x0 + 1] : 0u};
@@ -234,16 +240,16 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
       }
     }
   }
-  std::vector<std::int64_t> quads(n, 0), samples(n, 0), bits(n, 0);
+  std::vector<std::int64_t> bits(n, 0);
   for (int p = 0; p < planes; ++p) {
     const auto i = static_cast<std::size_t>(p);
     quad_count += quad_ends[i];
     sample_count += sample_ends[i];
     top_sum += top_ends[i];
     extra_count += extra_ends[i];
-    quads[i] = quad_count;
-    samples[i] = sample_count;
-    bits[i] = top_sum - static_cast<std::int64_t>(p) * sample_count + extra_count;
+    quads[i] += quad_count;
+    samples[i] += sample_count;
+    bits[i] = tops[i] + top_sum - static_cast<std::int64_t>(p) * samples[i] + extras[i] + extra_count;
   }
   for (int p = 0; p < planes; ++p) {
     out[static_cast<std::size_t>(p)].significant_quads = static_cast<double>(quads[static_cast<std::size_t>(p)]);
