@@ -705,9 +705,10 @@ std::vector<codec::ht::PlaneStatistics> statistics_by_definition(const std::vect
   return out;
 }
 
-// ht::plane_statistics (rate control's estimates, gathered in one visit per sample with SIMD
-// error sums over each chunk's own planes and difference arrays for the counts) agrees with the
-// definitions on random blocks of every shape and bit-plane count, with and without fractions.
+// ht::plane_statistics (rate control's estimates: SIMD error sums over each chunk's own planes,
+// SIMD quad counts plane by plane over whole chunks of columns and difference arrays over the rest)
+// agrees with the definitions on random blocks of every shape and bit-plane count, with and
+// without fractions.
 TEST(HtBlock, PlaneStatisticsMatchTheirDefinitions) {
   std::mt19937 rng(20261127);
   for (const auto& [w, h] : all_shapes()) {

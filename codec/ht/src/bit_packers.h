@@ -21,6 +21,14 @@ class ForwardStuffedPacker {
     used_ += count;
     while (used_ >= capacity_) flush_byte();
   }
+  // The same for up to kWideBits bits, which must be `bits`' only ones (fewer than 8 are pending
+  // between calls, so they fit the 64-bit accumulator).
+  static constexpr int kWideBits = 56;
+  void put_wide(std::uint64_t bits, int count) {
+    acc_ |= bits << used_;
+    used_ += count;
+    while (used_ >= capacity_) flush_byte();
+  }
 
  protected:
   // The next `capacity_` bits (8, or 7 after 0xFF: bit 7 is then a stuffed 0) as one byte.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -64,6 +65,16 @@ class SampleGrid {
     std::memcpy(&upper, cells_ + cell(x0, y0), sizeof upper);
     std::memcpy(&lower, cells_ + cell(x0, y0 + 1), sizeof lower);
     return (upper | lower) == 0;
+  }
+  // The four exponents of the quad at (x0, y0) as the bytes of one word, in the standard's sample
+  // order (T.814 7.3.1: left column top, left column bottom, right column top, right column
+  // bottom), the first lowest.
+  std::uint32_t quad_exponents(int x0, int y0) const {
+    std::uint16_t upper, lower;
+    std::memcpy(&upper, cells_ + cell(x0, y0), sizeof upper);
+    std::memcpy(&lower, cells_ + cell(x0, y0 + 1), sizeof lower);
+    return (upper & 0xFFu) | ((lower & 0xFFu) << 8) | (static_cast<std::uint32_t>(upper >> 8) << 16) |
+           (static_cast<std::uint32_t>(lower >> 8) << 24);
   }
   // v_n = 2 (mu - 1) + s (T.814 7.3.8), for a significant sample.
   std::uint32_t magsgn_value(int x, int y) const {
@@ -143,19 +154,29 @@ int exponent_predictor(const RowAbove& above, int rho) {
   return std::max(1, largest - 1);
 }
 
+// Bit 7 of each byte of `word` set where that byte is not 0, every other bit clear.
+constexpr std::uint32_t nonzero_bytes(std::uint32_t word) {
+  return (((word & 0x7F7F7F7Fu) + 0x7F7F7F7Fu) | word) & 0x80808080u;
+}
+// Bit 7 of byte n of `flags` (nonzero_bytes') as bit n of four: a multiply moves each to bit 24 + n
+// (the other products land on distinct bits outside 24..27).
+constexpr int byte_flags(std::uint32_t flags) {
+  return static_cast<int>((((flags & 0x80808080u) >> 7) * 0x01020408u) >> 24 & 0xFu);
+}
+static_assert(byte_flags(nonzero_bytes(0x00050000u)) == 4 && byte_flags(nonzero_bytes(0x01000100u)) == 10 &&
+              byte_flags(~nonzero_bytes(0x00010203u ^ 0x03030303u)) == 1);
+
 // Fills `q` where it lives: a QuadCoding returned by value was written field by field and then
 // copied with wide loads, which stalled on store forwarding (a tenth of the cleanup's time).
 void analyse_quad(const SampleGrid& g, const VlcEncodingTable& table, int qx, int qy, QuadCoding& q) {
   q = QuadCoding{};
   q.x0 = 2 * qx;
   q.y0 = 2 * qy;
-  int largest = 0;
-  std::array<int, 4> e{};
-  for (int n = 0; n < 4; ++n) {
-    e[static_cast<std::size_t>(n)] = g.exponent_at(q.x0 + kQuadOffsets[n][0], q.y0 + kQuadOffsets[n][1]);
-    if (e[static_cast<std::size_t>(n)] != 0) q.rho |= 1 << n;
-    largest = std::max(largest, e[static_cast<std::size_t>(n)]);
-  }
+  // Bit tricks on the word of the four exponents, without a branch (the data decides them all).
+  const std::uint32_t e = g.quad_exponents(q.x0, q.y0);
+  q.rho = byte_flags(nonzero_bytes(e));
+  const int largest =
+      static_cast<int>(std::max(std::max(e & 0xFF, (e >> 8) & 0xFF), std::max((e >> 16) & 0xFF, e >> 24)));
   int kappa = 1;
   if (qy == 0) {
     q.context = initial_row_context(g, q.x0);
@@ -167,10 +188,8 @@ void analyse_quad(const SampleGrid& g, const VlcEncodingTable& table, int qx, in
   q.exponent_bits = std::max(largest, kappa);
   q.residual = q.exponent_bits - kappa;
   // The samples whose exponent reaches U_q: the EMB patterns may imply their top bit.
-  int at_top = 0;
-  if (q.residual > 0)
-    for (int n = 0; n < 4; ++n)
-      if (e[static_cast<std::size_t>(n)] == q.exponent_bits) at_top |= 1 << n;
+  const int at_top =
+      q.residual > 0 ? byte_flags(~nonzero_bytes(e ^ (static_cast<std::uint32_t>(q.exponent_bits) * 0x01010101u))) : 0;
   if (q.rho != 0 || q.context != 0) q.code = table.lookup(q.context, q.rho, q.residual > 0, at_top);
 }
 
@@ -244,12 +263,23 @@ void encode_pair_residuals(const QuadCoding* quads, int count, bool initial_row,
 
 // MagSgn bits of a quad (T.814 7.3.8): each significant sample sends the low U_q bits of v_n, or
 // U_q - 1 where e_k implies the top one.
+// The quad's bits are gathered into one word and put at once where they fit.
 void put_magsgn(const SampleGrid& g, const QuadCoding& q, MagSgnPacker& ms) {
-  for (int n = 0; n < 4; ++n) {
-    if (!((q.rho >> n) & 1)) continue;
+  std::uint64_t word = 0;
+  int count = 0;
+  for (unsigned rho = static_cast<unsigned>(q.rho); rho != 0; rho &= rho - 1) {
+    const int n = std::countr_zero(rho);
     const int bits = q.exponent_bits - ((q.code.e_k >> n) & 1);
-    ms.put(g.magsgn_value(q.x0 + kQuadOffsets[n][0], q.y0 + kQuadOffsets[n][1]), bits);
+    const std::uint64_t value =
+        g.magsgn_value(q.x0 + kQuadOffsets[n][0], q.y0 + kQuadOffsets[n][1]) & ((std::uint64_t{1} << bits) - 1);
+    if (count + bits > MagSgnPacker::kWideBits) {
+      ms.put_wide(word, count);
+      word = 0, count = 0;
+    }
+    word |= value << count;
+    count += bits;
   }
+  ms.put_wide(word, count);
 }
 
 // Joins MagSgn, MEL and VLC into Dcup (T.814 7.1): the MEL's and the VLC's last, partial bytes

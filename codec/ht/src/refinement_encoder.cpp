@@ -34,6 +34,11 @@ void sigprop_pass(std::span<const std::uint32_t> m, std::span<const std::uint8_t
   above_buffer.assign(w, 0);
   std::uint8_t* const state = state_buffer.data();
   std::uint8_t* const above = above_buffer.data();
+  // Samples made significant, written at every visit and kept where the bit is 1.
+  thread_local std::vector<std::size_t> became_buffer;
+  became_buffer.resize(w * static_cast<std::size_t>(height));
+  std::size_t* const became_at = became_buffer.data();
+  std::size_t became_count = 0;
   for (int y0 = 0; y0 < height; y0 += 4) {
     const int rows = std::min(4, height - y0);
     const std::uint8_t* stripe = columns.data() + static_cast<std::size_t>(y0 / 4) * w;
@@ -45,30 +50,37 @@ void sigprop_pass(std::span<const std::uint32_t> m, std::span<const std::uint8_t
     const unsigned stripe_rows = (1u << rows) - 1;
     for (std::size_t x0 = 0; x0 < w; x0 += 4) {
       const std::size_t x1 = std::min(x0 + 4, w);
-      const std::size_t group_start = became.size();
+      // The group's bits (at most 16 of each kind), gathered and then put at once.
+      std::uint32_t magnitude_bits = 0, sign_bits = 0;
+      int magnitude_count = 0, sign_count = 0;
       for (std::size_t x = x0; x < x1; ++x) {
         unsigned column = state[x + 1];
         const unsigned sides = state[x] | state[x + 2];
         // Bit r: row r is insignificant and has a significant neighbour (rows r - 1 .. r + 1).
         const unsigned around = sides | column;
         if (((around | (around >> 1) | (around >> 2)) & ~(column >> 1) & stripe_rows) == 0) continue;
+        // Row by row without a branch (whether a sample is visited, and what it sends, depends on
+        // the data): a sample not visited sends nothing and changes nothing.
         std::size_t i = static_cast<std::size_t>(y0) * w + x;
         for (int r = 0; r < rows; ++r, i += w) {
-          if ((column >> (r + 1)) & 1) continue;
-          if ((((sides | column) >> r) & 7) == 0) continue;
-          const std::uint32_t bit = (m[i] >> q) & 1;
-          out.put(bit, 1);
-          if (bit) {
-            column |= 1u << (r + 1);
-            became.push_back(i);
-          }
+          const unsigned visited = ((~column >> (r + 1)) & 1) & ((((sides | column) >> r) & 7) != 0 ? 1u : 0u);
+          const unsigned bit = (m[i] >> q) & visited;
+          magnitude_bits |= bit << magnitude_count;
+          magnitude_count += static_cast<int>(visited);
+          column |= bit << (r + 1);
+          became_at[became_count] = i;
+          became_count += bit;
+          sign_bits |= ((negative[i] != 0 ? 1u : 0u) & bit) << sign_count;
+          sign_count += static_cast<int>(bit);
         }
         state[x + 1] = static_cast<std::uint8_t>(column);
       }
-      for (std::size_t k = group_start; k < became.size(); ++k) out.put(negative[became[k]] ? 1 : 0, 1);
+      out.put(magnitude_bits, magnitude_count);
+      out.put(sign_bits, sign_count);
     }
     for (std::size_t x = 0; x < w; ++x) above[x] = static_cast<std::uint8_t>((state[x + 1] >> 4) & 1);
   }
+  became.assign(became_at, became_at + became_count);
 }
 
 // A stripe column's MagRef bits from simd::stripe_columns' byte: the bits of the significant rows,
