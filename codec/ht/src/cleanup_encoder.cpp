@@ -262,8 +262,8 @@ void encode_pair_residuals(const QuadCoding* quads, int count, bool initial_row,
 }
 
 // MagSgn bits of a quad (T.814 7.3.8): each significant sample sends the low U_q bits of v_n, or
-// U_q - 1 where e_k implies the top one.
-// The quad's bits are gathered into one word and put at once where they fit.
+// U_q - 1 where e_k implies the top one. They are gathered into one word and put at once while
+// they fit (at most kWideBits).
 void put_magsgn(const SampleGrid& g, const QuadCoding& q, MagSgnPacker& ms) {
   std::uint64_t word = 0;
   int count = 0;
