@@ -12,11 +12,12 @@ seconds="${FUZZ_SECONDS:-30}"
 dir=build-fuzz
 # The seeds' encoder and image generator: FUZZ_SEED_BIN's (a folder of j2kenc and gentestimage that
 # another build made; the CI job passes the installed tools of its codec-alone Release build), else
-# built here. -O1 with line tables only, as the sanitizer suite: the build is most of this script's
-# time.
+# built here. -O1 with line tables only, as the sanitizer suite, and a unity build (a few sources per
+# compiler run): the build is most of this script's time (83 s for the five targets on a 2-core
+# machine, against some 125 s one file per run).
 seed_bin="${FUZZ_SEED_BIN:-}"
 CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DGPUJ2K_FUZZ=ON >/dev/null
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DGPUJ2K_FUZZ=ON -DCMAKE_UNITY_BUILD=ON >/dev/null
 targets=(pfm_fuzz pnm_fuzz bvh_fuzz rhubarb_fuzz codestream_fuzz)
 if [[ -z "$seed_bin" ]]; then
   targets+=(j2kenc gentestimage)
