@@ -178,7 +178,7 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
       return planes_between(cut < 0 ? top : std::max(0, cut - 1), top);
     };
   };
-  // The presample's blocks stay loaded until its first estimate is made.
+  // The presample's blocks stay loaded until the prediction is made (it is few blocks).
   std::vector<ht::HtBlock> presample_blocks(presample.blocks.size());
   std::vector<std::vector<ht::PlaneStatistics>> presample_stats(presample.blocks.size()), rest_stats;
   pool.parallel_for(presample.blocks.size(), [&](std::size_t k) {
@@ -196,21 +196,23 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
   const double guess = model_threshold(coded.jobs, presample, presample_stats, kNominalBytesPerModelBit, target);
   code_presample(planes_down_to(guess / kPresampleMargin, kNominalBytesPerModelBit));
   double first_estimate = predict_threshold(coded.jobs, coded, presample, target);
+  bool presample_whole = false;
   if (first_estimate < guess / (kPresampleMargin / 2)) {
     code_presample(every_plane);
+    presample_whole = true;
     first_estimate = predict_threshold(coded.jobs, coded, presample, target);
   }
-  presample_blocks.clear();
   const double first_bytes_per_bit = bytes_per_model_bit(coded, presample.blocks, presample_stats, first_estimate);
   code_planes(sample_rest, planes_down_to(first_estimate / kPresampleMargin, first_bytes_per_bit), &rest_stats);
   double threshold = predict_threshold(coded.jobs, coded, sample, target);
   const bool rest_too_shallow = threshold < first_estimate / (kPresampleMargin / 2);
-  const bool presample_too_shallow = threshold < guess / (kPresampleMargin / 2);
+  const bool presample_too_shallow = !presample_whole && threshold < guess / (kPresampleMargin / 2);
   if (rest_too_shallow || presample_too_shallow) {
     if (rest_too_shallow) code_planes(sample_rest, every_plane, nullptr);
-    if (presample_too_shallow) code_planes(presample.blocks, every_plane, nullptr);
+    if (presample_too_shallow) code_presample(every_plane);
     threshold = predict_threshold(coded.jobs, coded, sample, target);
   }
+  presample_blocks.clear();
   coded.stop_threshold = threshold;
   // The sample's statistics in its order, for the length model's scale.
   std::vector<std::vector<ht::PlaneStatistics>> sample_stats;
@@ -268,8 +270,8 @@ std::vector<HtExtension> ht_blocks_at_edges(const std::vector<CodedTile>& tiles,
         // Above: where the choice is nothing, or the highest cleanup alone. A choice of its SigProp
         // (and MagRef) pass too wants no coarser plane: the allocation took that cleanup whole and
         // more of the plane below it. On the 2048x2048 mosaic at 3 bpp, leaving them out took the
-        // blocks extended from 822 to 64 and moved that file by 0.0002 dB (46.3674 to 46.3672) and gave the
-        // same files at 0.1875 and 0.75 bpp and in every HT rate test case.
+        // blocks extended from 822 to 64 and moved that file by 0.0002 dB (46.3674 to 46.3672); the
+        // files at 0.1875 and 0.75 bpp and every HT rate test case stayed the same.
         if ((k == 0 || (c.point(k).plane == highest && c.point(k).passes == 1)) && highest < top)
           for (const int p : planes_between(highest + 1, std::min(top, highest + 2))) e.planes.push_back(p);
         // Below: where the choice takes the lowest cleanup's refinement passes, or is its last point.
