@@ -375,6 +375,33 @@ TEST(Select, BudgetSplitsTiesAndFillsLeftoverRoom) {
   EXPECT_EQ(s.bytes, 33u);
 }
 
+TEST(Select, SlopesOneUlpApartKeepTheirOrder) {
+  // The allocator sorts the slopes by their bits: blocks whose one step differs from the next
+  // block's in the last bit of the mantissa alone (and one infinite slope, a free pass) must still
+  // be taken steepest first, each budget of k steps taking exactly the k steepest.
+  Hulls hulls;
+  std::vector<double> slopes;
+  double slope = 3.0;
+  for (int b = 0; b < 12; ++b) {
+    slope = std::nextafter(slope, b % 2 ? 10.0 : 0.0);  // up, down, up, ...: not in block order
+    if (b % 2) slope = std::nextafter(slope, 10.0);
+    slopes.push_back(slope);
+    hulls.push_back({HullPoint{1, 8, slope * 8, slope}});
+  }
+  hulls.push_back({HullPoint{1, 0, 1.0, std::numeric_limits<double>::infinity()}});
+  slopes.push_back(std::numeric_limits<double>::infinity());
+  const RateAllocator allocator(hulls);
+  std::vector<std::size_t> by_slope(slopes.size());
+  for (std::size_t i = 0; i < by_slope.size(); ++i) by_slope[i] = i;
+  std::stable_sort(by_slope.begin(), by_slope.end(),
+                   [&](std::size_t a, std::size_t b) { return slopes[a] > slopes[b]; });
+  for (std::size_t k = 0; k <= 12; ++k) {
+    std::vector<int> expected(hulls.size(), 0);
+    for (std::size_t i = 0; i < k + 1; ++i) expected[by_slope[i]] = 1;  // the free step and the k steepest
+    EXPECT_EQ(allocator.for_budget(8 * k).passes, expected) << k << " steps";
+  }
+}
+
 TEST(Select, GreedyCompletionOnlyTakesABlocksNextStep) {
   // Block 0: a 10-byte step (slope 10) then a 1-byte step (slope 5). Block 1: one 6-byte step
   // (slope 6). With 8 bytes, block 1's step fits but block 0's first does not, so block 0's cheap

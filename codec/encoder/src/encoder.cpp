@@ -133,10 +133,12 @@ Tier1Target tier1_target(const Tile& tile, const EncodeParams& params, double sa
 t2::PrecinctPacketWriter precinct_writer(const CodedTile& coded, const EncodeParams& params, const Precinct& p,
                                          const std::vector<std::vector<int>>& passes) {
   std::vector<t2::PrecinctBand> bands;
+  bands.reserve(p.bands.size());
   for (const PrecinctBand& pb : p.bands) {
     t2::PrecinctBand band;
     band.cols = pb.cols;
     band.rows = pb.rows;
+    band.blocks.reserve(pb.blocks.size());
     for (const CodeBlock& cb : pb.blocks) {
       if (!coded.ht_candidates.empty()) {  // HT during rate control: the cleanup a trial picks
         HtPacketPlan ht = ht_packet_plan(coded, cb.index, passes[cb.index]);

@@ -311,26 +311,31 @@ void sync_ht_missing_msbs(std::vector<CodedTile>& tiles) {
       sync_missing_msbs(coded.ht_candidates[b], coded.blocks[b]);
 }
 
-void settle_ht_choices(std::vector<CodedTile>& tiles, LayerPasses& passes) {
+void settle_ht_choices(std::vector<CodedTile>& tiles, LayerPasses& passes, base::ThreadPool& pool) {
   sync_ht_missing_msbs(tiles);
   for (std::size_t t = 0; t < tiles.size(); ++t) {
     CodedTile& coded = tiles[t];
     if (coded.ht_candidates.empty()) continue;
-    for (std::size_t b = 0; b < coded.blocks.size(); ++b) {
+    // In parallel, the candidates freed by each block's worker too: on the H200 machine's 16
+    // threads, one thread freeing a 4096x4096 encode's candidates (some 60,000 allocations made on
+    // the other threads) took 7-9 ms.
+    pool.parallel_for(coded.blocks.size(), [&](std::size_t b) {
       std::vector<int>& plan = passes[t][b];
+      HtCandidates& candidates = coded.ht_candidates[b];
       const int k = plan.empty() ? 0 : plan.back();
-      const int kept = k > 0 ? coded.ht_candidates[b].point(k).passes : 0;
+      const int kept = k > 0 ? candidates.point(k).passes : 0;
       if (k > 0) {
-        const int plane = coded.ht_candidates[b].point(k).plane;
+        const int plane = candidates.point(k).plane;
         t1::EncodedBlock& chosen = coded.blocks[b];
-        chosen = std::move(*coded.ht_candidates[b].by_plane[static_cast<std::size_t>(plane)]);
+        chosen = std::move(*candidates.by_plane[static_cast<std::size_t>(plane)]);
         chosen.passes.resize(static_cast<std::size_t>(kept));
         chosen.data.resize(chosen.passes.back().length);
       } else {
         coded.blocks[b].passes.clear();
       }
       for (int& v : plan) v = v > 0 ? kept : 0;
-    }
+      candidates = HtCandidates{};
+    });
     coded.ht_candidates.clear();
   }
 }

@@ -52,8 +52,9 @@ void sync_ht_missing_msbs(std::vector<CodedTile>& tiles);
 // After the allocation: each block's chosen point takes the place of its truncation points, as
 // its codeword cut after the chosen pass (the cleanup, and SigProp and MagRef if chosen) in the
 // first layer that has any (T.814: an HT code-block's one cleanup and refinement segment), and the
-// candidates are dropped. The tiles then look as if tier-1 had coded that cleanup alone.
-void settle_ht_choices(std::vector<CodedTile>& tiles, LayerPasses& passes);
+// candidates are dropped. The tiles then look as if tier-1 had coded that cleanup alone. Block by
+// block in parallel on `pool`.
+void settle_ht_choices(std::vector<CodedTile>& tiles, LayerPasses& passes, base::ThreadPool& pool);
 
 // Tier-2's view of one block while candidates are open: the cleanup a truncation after
 // `cumulative_passes` (per layer) points stands for, and its passes in each layer that has any.

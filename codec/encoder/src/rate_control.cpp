@@ -258,7 +258,7 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
     recode_ms += ms;
     report.times.tier1 += ms;
   }
-  if (ht) settle_ht_choices(tiles, passes);
+  if (ht) settle_ht_choices(tiles, passes, in.pool);
   report.times.rate_control = ms_since(start) - recode_ms;
   return passes;
 }

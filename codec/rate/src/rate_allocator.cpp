@@ -1,10 +1,13 @@
 #include "codec/rate/rate_allocator.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace codec::rate {
 
@@ -28,24 +31,50 @@ void validate_hull(std::span<const HullPoint> hull, std::size_t block) {
   }
 }
 
-// A hull step as sorted: its slope and its index among all blocks' steps laid end to end. That
-// index grows with (block, step), so it alone breaks ties: by block, then by step.
-struct SortKey {
-  double slope;
-  std::uint32_t step;
-};
-
-// Every hull step, by decreasing slope. A total order, so that every query (and every test that
-// recomputes the order) sees the same sequence.
-std::vector<SortKey> sorted_steps(std::span<const std::vector<HullPoint>> hulls, std::size_t step_count) {
-  std::vector<SortKey> keys;
-  keys.reserve(step_count);
+// Every hull step's index among all blocks' steps laid end to end, by decreasing slope; equal
+// slopes by that index, which grows with (block, step). A total order, so that every query (and
+// every test that recomputes the order) sees the same sequence.
+//
+// A stable least-significant-digit radix sort on the slopes' bits: a positive double's bits (an
+// infinite slope's too; the hulls are validated first, so there is no NaN or slope <= 0) order as
+// the number does, so their complement orders by decreasing slope, and stability keeps equal
+// slopes by index. It replaced std::sort, which took 1 ms for the 2048x2048 mosaic's ~25,000
+// steps and 6 ms for the 4096x4096 one's, twice per HT encode, on one thread while the others
+// waited (NVIDIA H200 machine, 16 threads).
+std::vector<std::uint32_t> sorted_steps(std::span<const std::vector<HullPoint>> hulls, std::size_t step_count) {
+  struct Keyed {
+    std::uint64_t key;  // the slope's bits, complemented
+    std::uint32_t step;
+  };
+  std::vector<Keyed> keyed;
+  keyed.reserve(step_count);
   for (const std::vector<HullPoint>& hull : hulls)
-    for (const HullPoint& p : hull) keys.push_back(SortKey{p.slope, static_cast<std::uint32_t>(keys.size())});
-  std::sort(keys.begin(), keys.end(), [](const SortKey& a, const SortKey& b) {
-    return a.slope != b.slope ? a.slope > b.slope : a.step < b.step;
-  });
-  return keys;
+    for (const HullPoint& p : hull)
+      keyed.push_back(Keyed{~std::bit_cast<std::uint64_t>(p.slope), static_cast<std::uint32_t>(keyed.size())});
+  // 11-bit digits: six passes over 64 bits, each skipped where every key has the same digit (the
+  // exponent's digits, mostly). Every digit's histogram is counted in one pass first.
+  constexpr int kDigitBits = 11;
+  constexpr int kDigits = (64 + kDigitBits - 1) / kDigitBits;
+  constexpr std::size_t kBuckets = std::size_t{1} << kDigitBits;
+  auto digit = [](std::uint64_t key, int d) {
+    return static_cast<std::size_t>(key >> (d * kDigitBits)) & (kBuckets - 1);
+  };
+  std::vector<std::uint32_t> counts(kDigits * kBuckets, 0);
+  for (const Keyed& k : keyed)
+    for (int d = 0; d < kDigits; ++d) ++counts[static_cast<std::size_t>(d) * kBuckets + digit(k.key, d)];
+  std::vector<Keyed> scratch(keyed.size());
+  for (int d = 0; d < kDigits; ++d) {
+    std::uint32_t* count = counts.data() + static_cast<std::size_t>(d) * kBuckets;
+    if (!keyed.empty() && count[digit(keyed[0].key, d)] == keyed.size()) continue;  // one bucket: nothing moves
+    std::uint32_t offset = 0;
+    for (std::size_t b = 0; b < kBuckets; ++b) offset += std::exchange(count[b], offset);
+    for (const Keyed& k : keyed) scratch[count[digit(k.key, d)]++] = k;
+    keyed.swap(scratch);
+  }
+  std::vector<std::uint32_t> order;
+  order.reserve(keyed.size());
+  for (const Keyed& k : keyed) order.push_back(k.step);
+  return order;
 }
 
 double step_distortion(std::span<const HullPoint> hull, std::size_t point) {
@@ -77,18 +106,18 @@ void RateAllocator::index_blocks() {
 }
 
 void RateAllocator::order_steps() {
-  const std::vector<SortKey> keys = sorted_steps(hulls_, first_step_.back());
+  const std::vector<std::uint32_t> sorted = sorted_steps(hulls_, first_step_.back());
   // The block and hull point of each step of the end-to-end layout the keys index.
   std::vector<Step> flat;
-  flat.reserve(keys.size());
+  flat.reserve(sorted.size());
   for (std::size_t b = 0; b < hulls_.size(); ++b)
     for (std::size_t j = 0; j < hulls_[b].size(); ++j)
       flat.push_back(Step{static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(j), step_bytes(hulls_[b], j)});
-  order_.reserve(keys.size());
-  rank_.assign(keys.size(), 0);
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    order_.push_back(flat[keys[i].step]);
-    rank_[keys[i].step] = static_cast<std::uint32_t>(i);
+  order_.reserve(sorted.size());
+  rank_.assign(sorted.size(), 0);
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    order_.push_back(flat[sorted[i]]);
+    rank_[sorted[i]] = static_cast<std::uint32_t>(i);
   }
 }
 

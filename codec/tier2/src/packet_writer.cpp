@@ -156,14 +156,16 @@ void PrecinctPacketWriter::write_block_header(const CodeBlockCoding& plan, BandS
   // piece)) bits. Lblock grows (k ones then a zero raise it by k) to the least value that fits
   // every piece of this packet.
   const auto& passes = plan.encoded->passes;
-  const std::vector<SegmentPiece> pieces = split_into_segments(
-      style_, first_pass, added, [&](int pass) { return passes[static_cast<std::size_t>(pass)].length; }, coder_);
+  pieces_.clear();
+  split_into_segments(
+      style_, first_pass, added, [&](int pass) { return passes[static_cast<std::size_t>(pass)].length; }, coder_,
+      pieces_);
   int lblock = st.lblock;
-  for (const SegmentPiece& p : pieces)
+  for (const SegmentPiece& p : pieces_)
     lblock = std::max(lblock, static_cast<int>(std::bit_width(p.bytes)) - floor_log2(p.passes));
   for (int i = st.lblock; i < lblock; ++i) header.put_bit(true);
   header.put_bit(false);
-  for (const SegmentPiece& p : pieces) header.put_bits(p.bytes, lblock + floor_log2(p.passes));
+  for (const SegmentPiece& p : pieces_) header.put_bits(p.bytes, lblock + floor_log2(p.passes));
 
   // The body carries the same bytes, in the same block order as the header.
   const std::size_t begin = first_pass == 0 ? 0 : passes[static_cast<std::size_t>(first_pass) - 1].length;

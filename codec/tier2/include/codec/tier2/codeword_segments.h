@@ -29,13 +29,12 @@ struct SegmentPiece {
 };
 
 // Splits the passes first_pass .. first_pass+count-1 that one packet adds for a block into the
-// pieces whose lengths the header signals. `cumulative_length(i)` is the byte count needed to
-// decode through pass i (T1's PassInfo::length), so a piece's bytes are the difference of two.
+// pieces whose lengths the header signals, appended to `pieces`. `cumulative_length(i)` is the
+// byte count needed to decode through pass i (T1's PassInfo::length), so a piece's bytes are the
+// difference of two.
 template <class CumulativeLength>
-std::vector<SegmentPiece> split_into_segments(const t1::BlockStyle& style, int first_pass, int count,
-                                              CumulativeLength cumulative_length,
-                                              BlockCoder coder = BlockCoder::Ebcot) {
-  std::vector<SegmentPiece> pieces;
+void split_into_segments(const t1::BlockStyle& style, int first_pass, int count, CumulativeLength cumulative_length,
+                         BlockCoder coder, std::vector<SegmentPiece>& pieces) {
   auto before = [&](int pass) -> std::size_t { return pass == 0 ? 0 : cumulative_length(pass - 1); };
   int start = first_pass;
   const int end = first_pass + count;
@@ -45,6 +44,14 @@ std::vector<SegmentPiece> split_into_segments(const t1::BlockStyle& style, int f
       start = pass + 1;
     }
   }
+}
+
+template <class CumulativeLength>
+std::vector<SegmentPiece> split_into_segments(const t1::BlockStyle& style, int first_pass, int count,
+                                              CumulativeLength cumulative_length,
+                                              BlockCoder coder = BlockCoder::Ebcot) {
+  std::vector<SegmentPiece> pieces;
+  split_into_segments(style, first_pass, count, cumulative_length, coder, pieces);
   return pieces;
 }
 

@@ -63,6 +63,7 @@ class PrecinctPacketWriter {
   std::vector<BandState> state_;
   // The packet being written: each included block's new bytes, in header order (reused).
   std::vector<std::span<const std::uint8_t>> body_;
+  std::vector<SegmentPiece> pieces_;  // the block being written: its length fields (reused)
   t1::BlockStyle style_;
   BlockCoder coder_;
   int layers_ = -1;  // from the plans; -1 while the precinct has no code-blocks
