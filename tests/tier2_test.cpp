@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <deque>
 #include <cstdio>
 #include <cstdint>
 #include <memory>
@@ -433,8 +434,16 @@ class TestPrecinctReader {
 };
 
 // A precinct plan with its fake tier-1 output.
+// A plan for one block whose pass counts live as long as the test program (CodeBlockCoding owns
+// nothing).
+CodeBlockCoding coding(const EncodedBlock* block, const std::vector<int>& cumulative_passes) {
+  static std::deque<std::vector<int>> kept;
+  return CodeBlockCoding{block, kept.emplace_back(cumulative_passes)};
+}
+
 struct Plan {
   std::vector<std::unique_ptr<EncodedBlock>> storage;
+  std::deque<std::vector<int>> pass_counts;  // what the plans' spans refer to (a deque: never moves)
   std::vector<PrecinctBand> bands;
   int layers = 0;
 };
@@ -474,6 +483,7 @@ Plan random_plan(std::mt19937& rng, const BlockStyle& style) {
       const EncodedBlock& enc = *plan.storage.back();
       CodeBlockCoding cb;
       cb.encoded = &enc;
+      std::vector<int>& cumulative = plan.pass_counts.emplace_back();
       const int n = static_cast<int>(enc.passes.size());
       const unsigned mode = rng() % 5;  // 0: never included; 1: late start; else from a random layer
       const int start = mode == 1 ? plan.layers - 1 : static_cast<int>(rng() % plan.layers);
@@ -486,8 +496,9 @@ Plan random_plan(std::mt19937& rng, const BlockStyle& style) {
           if (l == plan.layers - 1 && rng() % 2 == 0) add = cap;
         }
         sent += add;
-        cb.cumulative_passes.push_back(sent);
+        cumulative.push_back(sent);
       }
+      cb.cumulative_passes = cumulative;
       band.blocks.push_back(cb);
     }
     plan.bands.push_back(std::move(band));
@@ -631,7 +642,7 @@ EncodedBlock block_with_lengths(std::vector<std::size_t> lengths, int missing_ms
 //   5 + log2(2)) | 101000 length 40                                -> 1110 1101 0100 0 -> ED 40
 TEST(PacketWriter, HandWorkedHeaders) {
   const EncodedBlock enc = block_with_lengths({5, 20, 45}, 2);
-  PrecinctBand band{1, 1, {CodeBlockCoding{&enc, {1, 3}}}};
+  PrecinctBand band{1, 1, {coding(&enc, {1, 3})}};
   PrecinctPacketWriter writer({band}, BlockStyle{});
   Bytes out;
   writer.write_packet(0, false, false, 0, out);
@@ -652,7 +663,7 @@ TEST(PacketWriter, BypassSplitsAfterTheFourthBitPlane) {
   const EncodedBlock enc = block_with_lengths(lengths, 0);
   BlockStyle style;
   style.bypass = true;
-  PrecinctPacketWriter writer({PrecinctBand{1, 1, {CodeBlockCoding{&enc, {12}}}}}, style);
+  PrecinctPacketWriter writer({PrecinctBand{1, 1, {coding(&enc, {12})}}}, style);
   Bytes out;
   writer.write_packet(0, false, false, 0, out);
   // 1 non-empty | 1 inclusion | 1 zero bit-planes = 0 | 1111 00110 twelve passes | 0 Lblock stays 3
@@ -670,8 +681,7 @@ TEST(PacketWriter, BypassSplitsAfterTheFourthBitPlane) {
 // need Lblock raised.)
 TEST(PacketWriter, HtBlocksSignalCleanupAndRefinementSegments) {
   const EncodedBlock enc = block_with_lengths({5, 9, 20}, 0);
-  PrecinctPacketWriter writer({PrecinctBand{1, 1, {CodeBlockCoding{&enc, {3}}}}}, BlockStyle{},
-                              codec::t2::BlockCoder::Ht);
+  PrecinctPacketWriter writer({PrecinctBand{1, 1, {coding(&enc, {3})}}}, BlockStyle{}, codec::t2::BlockCoder::Ht);
   Bytes out;
   writer.write_packet(0, false, false, 0, out);
   // 1 non-empty | 1 inclusion | 1 zero bit-planes = 0 | 1100 three passes | 0 Lblock stays 3 |
@@ -698,7 +708,7 @@ TEST(PacketWriter, EmptyPrecinctsAndOrderChecks) {
   EXPECT_EQ(out, (Bytes{0x00}));
 
   const EncodedBlock enc = block_with_lengths({1, 2}, 0);
-  PrecinctPacketWriter one({PrecinctBand{1, 1, {CodeBlockCoding{&enc, {0, 2}}}}}, BlockStyle{});
+  PrecinctPacketWriter one({PrecinctBand{1, 1, {coding(&enc, {0, 2})}}}, BlockStyle{});
   out.clear();
   EXPECT_THROW(one.write_packet(1, false, false, 0, out), std::logic_error);  // layer 0 first
   one.write_packet(0, false, false, 0, out);
@@ -709,22 +719,20 @@ TEST(PacketWriter, EmptyPrecinctsAndOrderChecks) {
 TEST(PacketWriter, RejectsInconsistentPlans) {
   const EncodedBlock enc = block_with_lengths({1, 2, 3}, 0);
   auto make = [&](std::vector<int> cum) {
-    return PrecinctPacketWriter({PrecinctBand{1, 1, {CodeBlockCoding{&enc, std::move(cum)}}}}, BlockStyle{});
+    return PrecinctPacketWriter({PrecinctBand{1, 1, {coding(&enc, cum)}}}, BlockStyle{});
   };
   EXPECT_THROW(make({2, 1}), std::invalid_argument);  // decreasing
   EXPECT_THROW(make({4}), std::invalid_argument);     // more passes than coded
-  EXPECT_THROW(PrecinctPacketWriter({PrecinctBand{2, 1, {CodeBlockCoding{&enc, {1}}}}}, BlockStyle{}),
+  EXPECT_THROW(PrecinctPacketWriter({PrecinctBand{2, 1, {coding(&enc, {1})}}}, BlockStyle{}),
                std::invalid_argument);  // 1 block for 2x1
-  EXPECT_THROW(PrecinctPacketWriter({PrecinctBand{1, 1, {CodeBlockCoding{nullptr, {0}}}}}, BlockStyle{}),
-               std::invalid_argument);
-  EXPECT_THROW(PrecinctPacketWriter({PrecinctBand{2, 1, {CodeBlockCoding{&enc, {1}}, CodeBlockCoding{&enc, {1, 2}}}}},
-                                    BlockStyle{}),
+  EXPECT_THROW(PrecinctPacketWriter({PrecinctBand{1, 1, {coding(nullptr, {0})}}}, BlockStyle{}), std::invalid_argument);
+  EXPECT_THROW(PrecinctPacketWriter({PrecinctBand{2, 1, {coding(&enc, {1}), coding(&enc, {1, 2})}}}, BlockStyle{}),
                std::invalid_argument);  // layer counts disagree
   std::vector<std::size_t> many(200, 1);
   const EncodedBlock big = block_with_lengths(many, 0);
-  EXPECT_THROW(PrecinctPacketWriter({PrecinctBand{1, 1, {CodeBlockCoding{&big, {165}}}}}, BlockStyle{}),
+  EXPECT_THROW(PrecinctPacketWriter({PrecinctBand{1, 1, {coding(&big, {165})}}}, BlockStyle{}),
                std::invalid_argument);  // Table B.4 stops at 164
-  EXPECT_NO_THROW(PrecinctPacketWriter({PrecinctBand{1, 1, {CodeBlockCoding{&big, {164, 200}}}}}, BlockStyle{}));
+  EXPECT_NO_THROW(PrecinctPacketWriter({PrecinctBand{1, 1, {coding(&big, {164, 200})}}}, BlockStyle{}));
 }
 
 // ------------------------------------------------------------------------------------------------

@@ -2,6 +2,7 @@
 #include "codec/encoder/engine.h"
 
 #include <algorithm>
+#include <deque>
 
 #include "codec/codestream/codestream_writer.h"
 #include "codec/codestream/jp2.h"
@@ -130,8 +131,19 @@ Tier1Target tier1_target(const Tile& tile, const EncodeParams& params, double sa
 
 // Tier-2's packet writer for precinct p of resolution res of tile-component tc, with the passes
 // `passes[b]` lists for each block b (cumulative, after each layer).
+// `ht_passes`: room for the pass counts of an HT block during rate control (the cleanup a trial
+// picks, with its own passes), which the writer refers to; cleared and filled here, so it must
+// stay untouched while the writer lives.
 t2::PrecinctPacketWriter precinct_writer(const CodedTile& coded, const EncodeParams& params, const Precinct& p,
-                                         const std::vector<std::vector<int>>& passes) {
+                                         const std::vector<std::vector<int>>& passes, std::vector<int>& ht_passes) {
+  const bool ht_trial = !coded.ht_candidates.empty();
+  if (ht_trial) {
+    std::size_t counts = 0;
+    for (const PrecinctBand& pb : p.bands)
+      for (const CodeBlock& cb : pb.blocks) counts += passes[cb.index].size();
+    ht_passes.assign(counts, 0);  // never reallocated below: the spans into it stay valid
+  }
+  std::size_t next_count = 0;
   std::vector<t2::PrecinctBand> bands;
   bands.reserve(p.bands.size());
   for (const PrecinctBand& pb : p.bands) {
@@ -140,13 +152,14 @@ t2::PrecinctPacketWriter precinct_writer(const CodedTile& coded, const EncodePar
     band.rows = pb.rows;
     band.blocks.reserve(pb.blocks.size());
     for (const CodeBlock& cb : pb.blocks) {
-      if (!coded.ht_candidates.empty()) {  // HT during rate control: the cleanup a trial picks
-        HtPacketPlan ht = ht_packet_plan(coded, cb.index, passes[cb.index]);
-        band.blocks.push_back(t2::CodeBlockCoding{ht.encoded, std::move(ht.cumulative_passes)});
+      const std::vector<int>& cumulative = passes[cb.index];
+      if (ht_trial) {
+        const std::span<int> kept(ht_passes.data() + next_count, cumulative.size());
+        next_count += cumulative.size();
+        band.blocks.push_back(t2::CodeBlockCoding{&ht_packet_plan(coded, cb.index, cumulative, kept), kept});
         continue;
       }
-      const t1::EncodedBlock& eb = coded.blocks[cb.index];
-      band.blocks.push_back(t2::CodeBlockCoding{&eb, passes[cb.index]});
+      band.blocks.push_back(t2::CodeBlockCoding{&coded.blocks[cb.index], cumulative});
     }
     bands.push_back(std::move(band));
   }
@@ -164,6 +177,7 @@ std::size_t write_tile_packets(const CodedTile& coded, const EncodeParams& param
   std::vector<t2::ComponentGeometry> geometry;
   // One packet writer per precinct, in (component, resolution, precinct) order.
   std::vector<std::vector<std::vector<t2::PrecinctPacketWriter>>> writers(tile.components.size());
+  std::deque<std::vector<int>> ht_passes;  // each writer's HT pass counts (a deque: they never move)
   for (const TileComponent& tc : tile.components) {
     t2::ComponentGeometry cg;
     auto& by_resolution = writers[static_cast<std::size_t>(tc.component)];
@@ -171,7 +185,8 @@ std::size_t write_tile_packets(const CodedTile& coded, const EncodeParams& param
       cg.resolutions.push_back(t2::ResolutionGeometry{res.rect.x0, res.rect.y0, res.rect.x1, res.rect.y1, res.ppx,
                                                       res.ppy, res.precincts_wide, res.precincts_high});
       auto& list = by_resolution.emplace_back();
-      for (const Precinct& p : res.precincts) list.push_back(precinct_writer(coded, params, p, passes));
+      for (const Precinct& p : res.precincts)
+        list.push_back(precinct_writer(coded, params, p, passes, ht_passes.emplace_back()));
     }
     geometry.push_back(std::move(cg));
   }
@@ -204,7 +219,8 @@ std::size_t tile_packets_length(const CodedTile& coded, const EncodeParams& para
                    [&](const Precinct* a, const Precinct* b) { return blocks(a) > blocks(b); });
   std::vector<std::size_t> lengths(precincts.size());
   pool.parallel_for(precincts.size(), [&](std::size_t i) {
-    t2::PrecinctPacketWriter writer = precinct_writer(coded, params, *precincts[i], passes);
+    thread_local std::vector<int> ht_passes;
+    t2::PrecinctPacketWriter writer = precinct_writer(coded, params, *precincts[i], passes, ht_passes);
     thread_local std::vector<std::uint8_t> headers;
     for (int layer = 0; layer < layers; ++layer) {
       lengths[i] += writer.write_packet(layer, params.sop, params.eph, 0, headers, false);

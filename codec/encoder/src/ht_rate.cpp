@@ -340,15 +340,14 @@ void settle_ht_choices(std::vector<CodedTile>& tiles, LayerPasses& passes, base:
   }
 }
 
-HtPacketPlan ht_packet_plan(const CodedTile& coded, std::size_t block, const std::vector<int>& cumulative_passes) {
-  HtPacketPlan out;
+const t1::EncodedBlock& ht_packet_plan(const CodedTile& coded, std::size_t block,
+                                       std::span<const int> cumulative_passes, std::span<int> passes_out) {
   const int k = cumulative_passes.empty() ? 0 : cumulative_passes.back();
+  const int kept = k > 0 ? coded.ht_candidates[block].point(k).passes : 0;
+  for (std::size_t l = 0; l < cumulative_passes.size(); ++l) passes_out[l] = cumulative_passes[l] > 0 ? kept : 0;
   // Not included: a block with nothing (the truncation points' lengths are not of one codeword).
   static const t1::EncodedBlock nothing{};
-  out.encoded = k > 0 ? &coded.ht_candidates[block].chosen(k) : &nothing;
-  const int kept = k > 0 ? coded.ht_candidates[block].point(k).passes : 0;
-  for (const int v : cumulative_passes) out.cumulative_passes.push_back(v > 0 ? kept : 0);
-  return out;
+  return k > 0 ? coded.ht_candidates[block].chosen(k) : nothing;
 }
 
 }  // namespace codec

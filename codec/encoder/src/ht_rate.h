@@ -1,6 +1,7 @@
 #pragma once
 #include <cstddef>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "codec/encoder/params.h"
@@ -57,11 +58,9 @@ void sync_ht_missing_msbs(std::vector<CodedTile>& tiles);
 void settle_ht_choices(std::vector<CodedTile>& tiles, LayerPasses& passes, base::ThreadPool& pool);
 
 // Tier-2's view of one block while candidates are open: the cleanup a truncation after
-// `cumulative_passes` (per layer) points stands for, and its passes in each layer that has any.
-struct HtPacketPlan {
-  const t1::EncodedBlock* encoded = nullptr;
-  std::vector<int> cumulative_passes;
-};
-HtPacketPlan ht_packet_plan(const CodedTile& coded, std::size_t block, const std::vector<int>& cumulative_passes);
+// `cumulative_passes` (per layer) points stands for; its passes in each layer that has any are
+// written to `passes_out` (one per layer).
+const t1::EncodedBlock& ht_packet_plan(const CodedTile& coded, std::size_t block,
+                                       std::span<const int> cumulative_passes, std::span<int> passes_out);
 
 }  // namespace codec

@@ -11,9 +11,12 @@
 namespace codec::t2 {
 
 // One code-block's contribution plan: how many of its coding passes are included after each layer.
+// It owns nothing: the caller keeps the block and the counts alive while a writer holds the plan
+// (rate control builds plans for thousands of blocks per trial, and a vector each was a third of
+// a trial's time).
 struct CodeBlockCoding {
   const t1::EncodedBlock* encoded = nullptr;  // never null; may have zero passes (all-zero block)
-  std::vector<int> cumulative_passes;         // size = number of layers, non-decreasing, <= encoded->passes.size()
+  std::span<const int> cumulative_passes;     // size = number of layers, non-decreasing, <= encoded->passes.size()
 };
 
 // A precinct's code-blocks in one subband, row-major cols x rows (either may be 0).
@@ -27,8 +30,8 @@ struct PrecinctBand {
 // packet header codes only what the previous packets of the precinct have not told the decoder.
 // Bands come in the packet's subband order (LL alone at resolution 0; HL, LH, HH above).
 // The plan and each block's missing_msbs are read at construction (they fill the tag trees); the
-// EncodedBlocks' data and pass lengths are read when packets are written, so the blocks must
-// outlive the writer.
+// plan's pass counts and the EncodedBlocks' data and pass lengths are read when packets are
+// written, so they must outlive the writer.
 // Throws std::invalid_argument for an inconsistent plan, std::logic_error for layers out of order.
 class PrecinctPacketWriter {
  public:
