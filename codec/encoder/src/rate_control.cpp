@@ -25,14 +25,25 @@ double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std
 
 // A selection as the allocator gives it, per layer over every block of the image in tile order
 // ([layer][global block]), spread back over the tiles.
-LayerPasses per_tile(const std::vector<CodedTile>& tiles, const std::vector<std::vector<int>>& per_layer) {
-  LayerPasses passes(tiles.size());
+// `passes` is reused as it is (rate control's trials make one selection after another, and a
+// vector per block each time was a good part of a trial's time).
+void per_tile(const std::vector<CodedTile>& tiles, const std::vector<std::vector<int>>& per_layer,
+              LayerPasses& passes) {
+  passes.resize(tiles.size());
   std::size_t g = 0;
-  for (std::size_t t = 0; t < tiles.size(); ++t)
+  for (std::size_t t = 0; t < tiles.size(); ++t) {
+    passes[t].resize(tiles[t].blocks.size());
     for (std::size_t b = 0; b < tiles[t].blocks.size(); ++b, ++g) {
-      std::vector<int>& block = passes[t].emplace_back();
+      std::vector<int>& block = passes[t][b];
+      block.clear();
       for (const std::vector<int>& layer : per_layer) block.push_back(layer[g]);
     }
+  }
+}
+
+LayerPasses per_tile(const std::vector<CodedTile>& tiles, const std::vector<std::vector<int>>& per_layer) {
+  LayerPasses passes;
+  per_tile(tiles, per_layer, passes);
   return passes;
 }
 
@@ -105,6 +116,7 @@ LayerPasses select_for_bytes(const std::vector<CodedTile>& tiles, const rate::Ra
   // bytes): every byte left unspent is quality given away.
   std::vector<std::vector<int>> best = none;
   std::size_t best_size = overhead;
+  LayerPasses trial;
   const std::size_t close_enough = target - std::max<std::size_t>(target / 20000, 4);
   const double aim = 0.5 * (static_cast<double>(close_enough) + static_cast<double>(target));
   double lo = 0, hi = 1.05;  // fits at lo, overflows at hi
@@ -121,7 +133,8 @@ LayerPasses select_for_bytes(const std::vector<CodedTile>& tiles, const rate::Ra
       mid = hi;  // first, the top of the bracket: if everything fits, that is the answer
     }
     auto candidate = plan_for(mid);
-    const std::size_t size = file_size(per_tile(tiles, candidate));
+    per_tile(tiles, candidate, trial);
+    const std::size_t size = file_size(trial);
     const double excess = static_cast<double>(size) - aim;
     if (size <= target) {
       if (size >= best_size) best_size = size, best = std::move(candidate);

@@ -4,18 +4,6 @@
 
 namespace codec::t2 {
 
-void HeaderBitWriter::put_bit(bool bit) {
-  acc_ = static_cast<std::uint8_t>((acc_ << 1) | (bit ? 1 : 0));
-  ++bits_;
-  if (++filled_ == capacity_) {
-    // A seven-bit byte is emitted as is: its MSB is the stuffed 0, so it can never be 0xFF.
-    out_.push_back(acc_);
-    capacity_ = acc_ == 0xFF ? 7 : 8;
-    acc_ = 0;
-    filled_ = 0;
-  }
-}
-
 void HeaderBitWriter::put_bits(std::uint64_t value, int count) {
   if (count < 0 || count > 64) throw std::invalid_argument("HeaderBitWriter::put_bits: count out of 0..64");
   for (int i = count - 1; i >= 0; --i) put_bit(((value >> i) & 1) != 0);

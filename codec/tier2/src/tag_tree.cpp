@@ -41,11 +41,6 @@ TagTreeEncoder::TagTreeEncoder(int width, int height, std::vector<int> leaf_valu
   }
 }
 
-std::size_t TagTreeEncoder::index(int level, int x, int y) const {
-  const Level& lv = levels_[static_cast<std::size_t>(level)];
-  return lv.offset + static_cast<std::size_t>(y) * static_cast<std::size_t>(lv.width) + static_cast<std::size_t>(x);
-}
-
 int TagTreeEncoder::value(int x, int y) const {
   if (x < 0 || y < 0 || x >= width_ || y >= height_) throw std::out_of_range("TagTreeEncoder: leaf outside the tree");
   return nodes_[index(0, x, y)].value;

@@ -13,7 +13,18 @@ class HeaderBitWriter {
   // Appends to `out`, which must outlive the writer; bytes already in `out` are left alone.
   explicit HeaderBitWriter(std::vector<std::uint8_t>& out) : out_(out) {}
 
-  void put_bit(bool bit);
+  // Inline: a packet header is written a bit at a time, and rate control's trials write thousands.
+  void put_bit(bool bit) {
+    acc_ = static_cast<std::uint8_t>((acc_ << 1) | (bit ? 1 : 0));
+    ++bits_;
+    if (++filled_ == capacity_) {
+      // A seven-bit byte is emitted as is: its MSB is the stuffed 0, so it can never be 0xFF.
+      out_.push_back(acc_);
+      capacity_ = acc_ == 0xFF ? 7 : 8;
+      acc_ = 0;
+      filled_ = 0;
+    }
+  }
   // The low `count` bits of `value`, most significant first; count in 0..64.
   void put_bits(std::uint64_t value, int count);
   // Ends the header: pads the last byte with zeros and, if the last whole byte was 0xFF, appends

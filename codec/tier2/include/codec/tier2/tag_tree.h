@@ -43,7 +43,10 @@ class TagTreeEncoder {
     int width, height;
     std::size_t offset;  // index of the level's first node in nodes_
   };
-  std::size_t index(int level, int x, int y) const;
+  std::size_t index(int level, int x, int y) const {
+    const Level& lv = levels_[static_cast<std::size_t>(level)];
+    return lv.offset + static_cast<std::size_t>(y) * static_cast<std::size_t>(lv.width) + static_cast<std::size_t>(x);
+  }
 
   int width_ = 0, height_ = 0;
   std::vector<Level> levels_;  // levels_[0] = leaves, levels_.back() = root
