@@ -225,13 +225,19 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
   std::vector<std::pair<std::size_t, std::size_t>> blocks;
   for (std::size_t t = 0; t < tiles.size(); ++t)
     for (std::size_t b = 0; b < tiles[t].blocks.size(); ++b) blocks.emplace_back(t, b);
+  std::vector<std::size_t> first_block(tiles.size() + 1, 0);  // global index of each tile's block 0
+  for (std::size_t t = 0; t < tiles.size(); ++t) first_block[t + 1] = first_block[t] + tiles[t].blocks.size();
   std::optional<std::size_t> empty_file;
+  // Each round's hulls; after the first only the blocks coded again (`changed`, global indices)
+  // get new ones.
+  std::vector<std::vector<rate::HullPoint>> hulls(blocks.size());
+  std::vector<std::size_t> changed(blocks.size());
+  for (std::size_t g = 0; g < changed.size(); ++g) changed[g] = g;
   for (int round = 0;; ++round) {
     if (ht) sync_ht_missing_msbs(tiles);
-    std::vector<std::vector<rate::HullPoint>> hulls(blocks.size());
-    in.pool.parallel_for(blocks.size(), [&](std::size_t g) {
-      const auto [t, b] = blocks[g];
-      hulls[g] = rate::convex_hull(tiles[t].blocks[b].passes, tiles[t].jobs[b].weight);
+    in.pool.parallel_for(changed.size(), [&](std::size_t k) {
+      const auto [t, b] = blocks[changed[k]];
+      hulls[changed[k]] = rate::convex_hull(tiles[t].blocks[b].passes, tiles[t].jobs[b].weight);
     });
     double energy = 0;
     for (const auto& [t, b] : blocks) energy += tiles[t].blocks[b].energy * tiles[t].jobs[b].weight;
@@ -247,6 +253,8 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
       report.recoded_blocks += extensions.size();
       const auto extend_start = Clock::now();
       extend_ht_candidates(tiles, extensions, in.params, in.pool);
+      changed.clear();
+      for (const HtExtension& e : extensions) changed.push_back(first_block[e.tile] + e.block);
       const double ms = ms_since(extend_start);
       recode_ms += ms;
       report.times.tier1 += ms;
@@ -270,6 +278,8 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
     const double ms = ms_since(recode_start);
     recode_ms += ms;
     report.times.tier1 += ms;
+    changed.clear();
+    for (const StarvedBlock& s : starved) changed.push_back(first_block[s.tile] + s.block);
   }
   if (ht) settle_ht_choices(tiles, passes, in.pool);
   report.times.rate_control = ms_since(start) - recode_ms;
