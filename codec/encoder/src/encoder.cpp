@@ -2,7 +2,6 @@
 #include "codec/encoder/engine.h"
 
 #include <algorithm>
-#include <deque>
 
 #include "codec/codestream/codestream_writer.h"
 #include "codec/codestream/jp2.h"
@@ -167,58 +166,97 @@ t2::PrecinctPacketWriter precinct_writer(const CodedTile& coded, const EncodePar
                                   params.ht ? t2::BlockCoder::Ht : t2::BlockCoder::Ebcot);
 }
 
-// Tier-2: every packet of the tile in progression order, appended to `body`. `passes[b]` lists
-// block b's cumulative passes after each layer. Returns the packets' total length.
-std::size_t write_tile_packets(const CodedTile& coded, const EncodeParams& params,
-                               const std::vector<std::vector<int>>& passes, int layers,
-                               std::vector<std::uint8_t>& body) {
-  const Tile& tile = coded.tile;
-
-  std::vector<t2::ComponentGeometry> geometry;
-  // One packet writer per precinct, in (component, resolution, precinct) order.
-  std::vector<std::vector<std::vector<t2::PrecinctPacketWriter>>> writers(tile.components.size());
-  std::deque<std::vector<int>> ht_passes;  // each writer's HT pass counts (a deque: they never move)
-  for (const TileComponent& tc : tile.components) {
-    t2::ComponentGeometry cg;
-    auto& by_resolution = writers[static_cast<std::size_t>(tc.component)];
-    for (const Resolution& res : tc.resolutions) {
-      cg.resolutions.push_back(t2::ResolutionGeometry{res.rect.x0, res.rect.y0, res.rect.x1, res.rect.y1, res.ppx,
-                                                      res.ppy, res.precincts_wide, res.precincts_high});
-      auto& list = by_resolution.emplace_back();
-      for (const Precinct& p : res.precincts)
-        list.push_back(precinct_writer(coded, params, p, passes, ht_passes.emplace_back()));
-    }
-    geometry.push_back(std::move(cg));
-  }
-  std::size_t total = 0;
-  std::uint16_t sequence = 0;
-  for (const t2::PacketId& id :
-       t2::progression(to_t2(params.order), layers, tile.rect.x0, tile.rect.y0, tile.rect.x1, tile.rect.y1, geometry))
-    total += writers[static_cast<std::size_t>(id.component)][static_cast<std::size_t>(id.resolution)]
-                    [static_cast<std::size_t>(id.precinct)]
-                        .write_packet(id.layer, params.sop, params.eph, sequence++, body, true);
-  return total;
-}
-
-// The length write_tile_packets would return, for rate control's trials: a packet's length does
-// not depend on where the progression puts it (SOP's sequence number has a fixed size), so each
-// precinct's packets are measured on their own, in parallel, their headers only.
-std::size_t tile_packets_length(const CodedTile& coded, const EncodeParams& params,
-                                const std::vector<std::vector<int>>& passes, int layers, base::ThreadPool& pool) {
+// The tile's precincts in (component, resolution, precinct) order.
+std::vector<const Precinct*> tile_precincts(const Tile& tile) {
   std::vector<const Precinct*> precincts;
-  for (const TileComponent& tc : coded.tile.components)
+  for (const TileComponent& tc : tile.components)
     for (const Resolution& res : tc.resolutions)
       for (const Precinct& p : res.precincts) precincts.push_back(&p);
-  // The largest first, so that no thread is left with a big one at the end.
+  return precincts;
+}
+
+// Indices into `precincts`, the largest (most code-blocks) first, so that no thread of a
+// parallel loop over them is left with a big one at the end.
+std::vector<std::size_t> largest_first(const std::vector<const Precinct*>& precincts) {
   auto blocks = [](const Precinct* p) {
     std::size_t n = 0;
     for (const PrecinctBand& pb : p->bands) n += pb.blocks.size();
     return n;
   };
-  std::stable_sort(precincts.begin(), precincts.end(),
-                   [&](const Precinct* a, const Precinct* b) { return blocks(a) > blocks(b); });
+  std::vector<std::size_t> order(precincts.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return blocks(precincts[a]) > blocks(precincts[b]); });
+  return order;
+}
+
+// Tier-2: every packet of the tile in progression order. `passes[b]` lists block b's cumulative
+// passes after each layer. A precinct's packets depend only on its own earlier packets (its tag
+// trees and block states), and each precinct's come in layer order in every progression, so the
+// precincts write theirs in parallel, each packet into its own buffer with the sequence number of
+// its place in the progression, and the buffers are joined in that order (on the H200 machine's
+// 16 threads, writing them one after another took 1.5-2 ms for the 2048x2048 mosaic at 0.75 bpp
+// and 4.5-7 ms for the 4096x4096 one).
+std::vector<std::uint8_t> tile_body(const CodedTile& coded, const EncodeParams& params,
+                                    const std::vector<std::vector<int>>& passes, int layers, base::ThreadPool& pool) {
+  const Tile& tile = coded.tile;
+  const std::vector<const Precinct*> precincts = tile_precincts(tile);
+  std::vector<t2::ComponentGeometry> geometry;
+  std::vector<std::vector<std::size_t>> first_precinct(tile.components.size());  // [component][resolution]
+  std::size_t next = 0;
+  for (const TileComponent& tc : tile.components) {
+    t2::ComponentGeometry cg;
+    for (const Resolution& res : tc.resolutions) {
+      cg.resolutions.push_back(t2::ResolutionGeometry{res.rect.x0, res.rect.y0, res.rect.x1, res.rect.y1, res.ppx,
+                                                      res.ppy, res.precincts_wide, res.precincts_high});
+      first_precinct[static_cast<std::size_t>(tc.component)].push_back(next);
+      next += res.precincts.size();
+    }
+    geometry.push_back(std::move(cg));
+  }
+  const auto layer_count = static_cast<std::size_t>(layers);
+  const std::vector<t2::PacketId> order =
+      t2::progression(to_t2(params.order), layers, tile.rect.x0, tile.rect.y0, tile.rect.x1, tile.rect.y1, geometry);
+  auto packet_index = [&](const t2::PacketId& id) {
+    const std::size_t precinct =
+        first_precinct[static_cast<std::size_t>(id.component)][static_cast<std::size_t>(id.resolution)] +
+        static_cast<std::size_t>(id.precinct);
+    return precinct * layer_count + static_cast<std::size_t>(id.layer);
+  };
+  std::vector<std::uint16_t> sequence(precincts.size() * layer_count);  // SOP's Nsop, modulo 2^16
+  for (std::size_t k = 0; k < order.size(); ++k) sequence[packet_index(order[k])] = static_cast<std::uint16_t>(k);
+  std::vector<std::vector<std::uint8_t>> packets(precincts.size() * layer_count);
+  const std::vector<std::size_t> work = largest_first(precincts);
+  pool.parallel_for(work.size(), [&](std::size_t w) {
+    const std::size_t i = work[w];
+    std::vector<int> ht_passes;
+    t2::PrecinctPacketWriter writer = precinct_writer(coded, params, *precincts[i], passes, ht_passes);
+    for (std::size_t layer = 0; layer < layer_count; ++layer) {
+      const std::size_t k = i * layer_count + layer;
+      writer.write_packet(static_cast<int>(layer), params.sop, params.eph, sequence[k], packets[k], true);
+    }
+  });
+  std::size_t bytes = 0;
+  for (const std::vector<std::uint8_t>& packet : packets) bytes += packet.size();
+  std::vector<std::uint8_t> body;
+  body.reserve(bytes);
+  for (const t2::PacketId& id : order) {
+    const std::vector<std::uint8_t>& packet = packets[packet_index(id)];
+    body.insert(body.end(), packet.begin(), packet.end());
+  }
+  return body;
+}
+
+// The length tile_body's packets would have, for rate control's trials: a packet's length does
+// not depend on where the progression puts it (SOP's sequence number has a fixed size), so each
+// precinct's packets are measured on their own, in parallel, their headers only.
+std::size_t tile_packets_length(const CodedTile& coded, const EncodeParams& params,
+                                const std::vector<std::vector<int>>& passes, int layers, base::ThreadPool& pool) {
+  const std::vector<const Precinct*> precincts = tile_precincts(coded.tile);
+  const std::vector<std::size_t> work = largest_first(precincts);
   std::vector<std::size_t> lengths(precincts.size());
-  pool.parallel_for(precincts.size(), [&](std::size_t i) {
+  pool.parallel_for(work.size(), [&](std::size_t w) {
+    const std::size_t i = work[w];
     thread_local std::vector<int> ht_passes;
     t2::PrecinctPacketWriter writer = precinct_writer(coded, params, *precincts[i], passes, ht_passes);
     thread_local std::vector<std::uint8_t> headers;
@@ -230,21 +268,6 @@ std::size_t tile_packets_length(const CodedTile& coded, const EncodeParams& para
   std::size_t total = 0;
   for (std::size_t length : lengths) total += length;
   return total;
-}
-
-std::vector<std::uint8_t> tile_body(const CodedTile& coded, const EncodeParams& params,
-                                    const std::vector<std::vector<int>>& passes, int layers) {
-  // Room for every byte the packets carry, so that the body is not copied as it grows; headers
-  // take a few bytes a block at most.
-  std::size_t data_bytes = 0;
-  for (std::size_t b = 0; b < coded.blocks.size(); ++b) {
-    const int kept = passes[b].empty() ? 0 : passes[b].back();
-    if (kept > 0) data_bytes += coded.blocks[b].passes[static_cast<std::size_t>(kept) - 1].length + 8;
-  }
-  std::vector<std::uint8_t> body;
-  body.reserve(data_bytes + 4096);
-  write_tile_packets(coded, params, passes, layers, body);
-  return body;
 }
 
 // The codestream as the file `format` asks for: bare, or in a JP2 or JPH file's boxes.
@@ -313,7 +336,7 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
     cs::CodestreamWriter writer(header);
     for (std::size_t t = 0; t < tiles.size(); ++t)
       writer.add_tile_part(static_cast<unsigned>(tiles[t].tile.index), 0, 1,
-                           tile_body(tiles[t], params, passes[t], layers));
+                           tile_body(tiles[t], params, passes[t], layers, pool));
     std::vector<std::uint8_t> codestream = writer.finish();
     return in_file(format, std::move(codestream), header.siz);
   };
