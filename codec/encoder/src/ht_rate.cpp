@@ -185,12 +185,27 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
     presample_blocks[k] = load_ht_block(coded, coded.jobs[presample.blocks[k]], params);
     presample_stats[k] = ht::plane_statistics(presample_blocks[k]);
   });
+  // The blocks with the most coding (planes times samples) go first: the presample holds a few big
+  // low-resolution blocks of many planes, and in sample order those of the last component started
+  // last, to finish alone.
   auto code_presample = [&](const PlanesOf& planes_of) {
-    pool.parallel_for(presample.blocks.size(), [&](std::size_t k) {
+    std::vector<std::vector<int>> planes(presample.blocks.size());
+    std::vector<std::size_t> order(presample.blocks.size());
+    std::vector<std::size_t> work(presample.blocks.size());
+    for (std::size_t k = 0; k < planes.size(); ++k) {
       const std::size_t b = presample.blocks[k];
-      const std::vector<ht::PlaneStatistics>& s = presample_stats[k];
-      add_candidates(coded.ht_candidates[b], presample_blocks[k], planes_of(b, s), ht_passes(params));
-      coded.blocks[b] = truncation_points(coded.ht_candidates[b], presample_blocks[k].bit_planes, s.back().error);
+      planes[k] = planes_of(b, presample_stats[k]);
+      order[k] = k;
+      work[k] = planes[k].size() * static_cast<std::size_t>(coded.jobs[b].width) *
+                static_cast<std::size_t>(coded.jobs[b].height);
+    }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return work[x] > work[y]; });
+    pool.parallel_for(order.size(), [&](std::size_t w) {
+      const std::size_t k = order[w];
+      const std::size_t b = presample.blocks[k];
+      add_candidates(coded.ht_candidates[b], presample_blocks[k], planes[k], ht_passes(params));
+      coded.blocks[b] =
+          truncation_points(coded.ht_candidates[b], presample_blocks[k].bit_planes, presample_stats[k].back().error);
     });
   };
   const double guess = model_threshold(coded.jobs, presample, presample_stats, kNominalBytesPerModelBit, target);
