@@ -132,8 +132,8 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
   // statistics), with their truncation points; the statistics are kept where asked for. A block
   // coded again keeps what it had and gains the planes it lacked.
   using PlanesOf = std::function<std::vector<int>(std::size_t block, const std::vector<ht::PlaneStatistics>&)>;
-  auto code_planes = [&](const std::vector<std::size_t>& which, const PlanesOf& planes_of,
-                         std::vector<std::vector<ht::PlaneStatistics>>* stats) {
+  auto codwanted = [&](const std::vector<std::size_t>& which, const PlanesOf& planes_of,
+                       std::vector<std::vector<ht::PlaneStatistics>>* stats) {
     if (stats) stats->assign(which.size(), {});
     pool.parallel_for(which.size(), [&](std::size_t k) {
       const std::size_t b = which[k];
@@ -150,7 +150,7 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
   std::vector<std::size_t> all(n);
   for (std::size_t i = 0; i < n; ++i) all[i] = i;
   if (target.kind == Tier1Target::Kind::None || target.value <= 0 || n < 64) {
-    code_planes(all, every_plane, nullptr);
+    codwanted(all, every_plane, nullptr);
     for (std::size_t i = 0; i < n; ++i) block_done();
     return;
   }
@@ -218,12 +218,12 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
     first_estimate = predict_threshold(coded.jobs, coded, presample, target);
   }
   const double first_bytes_per_bit = bytes_per_model_bit(coded, presample.blocks, presample_stats, first_estimate);
-  code_planes(sample_rest, planes_down_to(first_estimate / kPresampleMargin, first_bytes_per_bit), &rest_stats);
+  codwanted(sample_rest, planes_down_to(first_estimate / kPresampleMargin, first_bytes_per_bit), &rest_stats);
   double threshold = predict_threshold(coded.jobs, coded, sample, target);
   const bool rest_too_shallow = threshold < first_estimate / (kPresampleMargin / 2);
   const bool presample_too_shallow = !presample_whole && threshold < guess / (kPresampleMargin / 2);
   if (rest_too_shallow || presample_too_shallow) {
-    if (rest_too_shallow) code_planes(sample_rest, every_plane, nullptr);
+    if (rest_too_shallow) codwanted(sample_rest, every_plane, nullptr);
     if (presample_too_shallow) code_presample(every_plane);
     threshold = predict_threshold(coded.jobs, coded, sample, target);
   }
@@ -267,18 +267,20 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
 }
 
 std::vector<HtExtension> ht_blocks_at_edges(const std::vector<CodedTile>& tiles, const LayerPasses& passes,
-                                            double lowest_slope) {
+                                            double lowest_slope, base::ThreadPool& pool) {
   std::vector<HtExtension> out;
   for (std::size_t t = 0; t < tiles.size(); ++t) {
     if (tiles[t].ht_candidates.empty()) continue;
-    for (std::size_t b = 0; b < tiles[t].blocks.size(); ++b) {
+    // Each block's planes to code, found in parallel, then gathered in block order.
+    std::vector<std::vector<int>> planes(tiles[t].blocks.size());
+    pool.parallel_for(tiles[t].blocks.size(), [&](std::size_t b) {
       const HtCandidates& c = tiles[t].ht_candidates[b];
       const t1::EncodedBlock& points = tiles[t].blocks[b];
       const int top = points.bit_planes - 1;
-      if (top < 0) continue;
-      HtExtension e{t, b, {}};
+      if (top < 0) return;
+      std::vector<int>& wanted = planes[b];
       if (c.skipped) {
-        if (c.slope_bound >= lowest_slope) e.planes = planes_between(std::max(0, top - 1), top);
+        if (c.slope_bound >= lowest_slope) wanted = planes_between(std::max(0, top - 1), top);
       } else {
         const int k = passes[t][b].back();
         const int highest = c.highest_coded(), lowest = c.lowest_coded();
@@ -288,7 +290,7 @@ std::vector<HtExtension> ht_blocks_at_edges(const std::vector<CodedTile>& tiles,
         // blocks extended from 822 to 64 and moved that file by 0.0002 dB (46.3674 to 46.3672); the
         // files at 0.1875 and 0.75 bpp and every HT rate test case stayed the same.
         if ((k == 0 || (c.point(k).plane == highest && c.point(k).passes == 1)) && highest < top)
-          for (const int p : planes_between(highest + 1, std::min(top, highest + 2))) e.planes.push_back(p);
+          for (const int p : planes_between(highest + 1, std::min(top, highest + 2))) wanted.push_back(p);
         // Below: where the choice takes the lowest cleanup's refinement passes, or is its last point.
         // A choice of that cleanup alone, its refinement passes refused, wants no finer plane: on the
         // 1024x1024 mosaic at 0.75 bpp such extensions were 138 of 185, and leaving them out gave
@@ -296,10 +298,11 @@ std::vector<HtExtension> ht_blocks_at_edges(const std::vector<CodedTile>& tiles,
         const bool refinement_refused =
             k > 0 && c.point(k).passes == 1 && k < static_cast<int>(c.points.size()) && c.point(k + 1).plane == lowest;
         if (k > 0 && c.point(k).plane == lowest && lowest > 0 && !refinement_refused)
-          for (const int p : planes_between(std::max(0, lowest - 2), lowest - 1)) e.planes.push_back(p);
+          for (const int p : planes_between(std::max(0, lowest - 2), lowest - 1)) wanted.push_back(p);
       }
-      if (!e.planes.empty()) out.push_back(std::move(e));
-    }
+    });
+    for (std::size_t b = 0; b < planes.size(); ++b)
+      if (!planes[b].empty()) out.push_back(HtExtension{t, b, std::move(planes[b])});
   }
   return out;
 }
@@ -320,14 +323,14 @@ void extend_ht_candidates(std::vector<CodedTile>& tiles, const std::vector<HtExt
   });
 }
 
-void sync_ht_missing_msbs(std::vector<CodedTile>& tiles) {
+void sync_ht_missing_msbs(std::vector<CodedTile>& tiles, base::ThreadPool& pool) {
   for (CodedTile& coded : tiles)
-    for (std::size_t b = 0; b < coded.ht_candidates.size(); ++b)
-      sync_missing_msbs(coded.ht_candidates[b], coded.blocks[b]);
+    pool.parallel_for(coded.ht_candidates.size(),
+                      [&](std::size_t b) { sync_missing_msbs(coded.ht_candidates[b], coded.blocks[b]); });
 }
 
 void settle_ht_choices(std::vector<CodedTile>& tiles, LayerPasses& passes, base::ThreadPool& pool) {
-  sync_ht_missing_msbs(tiles);
+  sync_ht_missing_msbs(tiles, pool);
   for (std::size_t t = 0; t < tiles.size(); ++t) {
     CodedTile& coded = tiles[t];
     if (coded.ht_candidates.empty()) continue;

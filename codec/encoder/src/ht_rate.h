@@ -41,14 +41,14 @@ struct HtExtension {
 // whose energy, bought with one byte, reaches `lowest_slope` (the lowest slope the allocation
 // takes).
 std::vector<HtExtension> ht_blocks_at_edges(const std::vector<CodedTile>& tiles, const LayerPasses& passes,
-                                            double lowest_slope);
+                                            double lowest_slope, base::ThreadPool& pool);
 
 // Codes the extensions' planes (in parallel on `pool`) and updates the blocks' truncation points.
 void extend_ht_candidates(std::vector<CodedTile>& tiles, const std::vector<HtExtension>& extensions,
                           const EncodeParams& params, base::ThreadPool& pool);
 
 // Before measuring trial files: every coded cleanup's missing_msbs from its block's settled Mb.
-void sync_ht_missing_msbs(std::vector<CodedTile>& tiles);
+void sync_ht_missing_msbs(std::vector<CodedTile>& tiles, base::ThreadPool& pool);
 
 // After the allocation: each block's chosen point takes the place of its truncation points, as
 // its codeword cut after the chosen pass (the cleanup, and SigProp and MagRef if chosen) in the

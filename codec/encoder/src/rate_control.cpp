@@ -234,7 +234,7 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
   std::vector<std::size_t> changed(blocks.size());
   for (std::size_t g = 0; g < changed.size(); ++g) changed[g] = g;
   for (int round = 0;; ++round) {
-    if (ht) sync_ht_missing_msbs(tiles);
+    if (ht) sync_ht_missing_msbs(tiles, in.pool);
     in.pool.parallel_for(changed.size(), [&](std::size_t k) {
       const auto [t, b] = blocks[changed[k]];
       hulls[changed[k]] = rate::convex_hull(tiles[t].blocks[b].passes, tiles[t].jobs[b].weight);
@@ -248,7 +248,7 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
     if (ht) {
       // HT: blocks whose choice lies at the edge of the cleanups coded get the next planes coded.
       // An edge moves by two planes a round and the prediction is rarely further off than that.
-      const auto extensions = ht_blocks_at_edges(tiles, passes, lowest_slope_taken(tiles, passes, hulls));
+      const auto extensions = ht_blocks_at_edges(tiles, passes, lowest_slope_taken(tiles, passes, hulls), in.pool);
       if (extensions.empty() || round == kHtRounds) break;
       report.recoded_blocks += extensions.size();
       const auto extend_start = Clock::now();
