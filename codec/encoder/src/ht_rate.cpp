@@ -330,7 +330,6 @@ void sync_ht_missing_msbs(std::vector<CodedTile>& tiles, base::ThreadPool& pool)
 }
 
 void settle_ht_choices(std::vector<CodedTile>& tiles, LayerPasses& passes, base::ThreadPool& pool) {
-  sync_ht_missing_msbs(tiles, pool);
   for (std::size_t t = 0; t < tiles.size(); ++t) {
     CodedTile& coded = tiles[t];
     if (coded.ht_candidates.empty()) continue;

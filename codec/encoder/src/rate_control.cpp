@@ -90,10 +90,11 @@ LayerPasses select_for_psnr(const std::vector<CodedTile>& tiles, const rate::Rat
 // Byte targets for the whole file, headers and packet headers included: bisect a common scale of
 // the layers' data budgets until the file fits the last target, as full as it gets.
 // `overhead`: the file with every packet empty, measured on the first call (an empty packet's
-// header is one bit, whatever its blocks hold, so it does not change between rounds).
+// header is one bit, whatever its blocks hold, so it does not change between rounds). `trial`: room
+// for the trial selections, kept between rounds.
 LayerPasses select_for_bytes(const std::vector<CodedTile>& tiles, const rate::RateAllocator& allocator,
                              std::size_t block_count, const RateControlInputs& in, const FileSizer& file_size,
-                             std::optional<std::size_t>& empty_file) {
+                             std::optional<std::size_t>& empty_file, LayerPasses& trial) {
   const EncodeParams& params = in.params;
   const auto target = static_cast<std::size_t>(params.layers.back().value);
   const std::vector<std::vector<int>> none(params.layers.size(), std::vector<int>(block_count, 0));
@@ -116,7 +117,6 @@ LayerPasses select_for_bytes(const std::vector<CodedTile>& tiles, const rate::Ra
   // bytes): every byte left unspent is quality given away.
   std::vector<std::vector<int>> best = none;
   std::size_t best_size = overhead;
-  LayerPasses trial;
   const std::size_t close_enough = target - std::max<std::size_t>(target / 20000, 4);
   const double aim = 0.5 * (static_cast<double>(close_enough) + static_cast<double>(target));
   double lo = 0, hi = 1.05;  // fits at lo, overflows at hi
@@ -228,13 +228,15 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
   std::vector<std::size_t> first_block(tiles.size() + 1, 0);  // global index of each tile's block 0
   for (std::size_t t = 0; t < tiles.size(); ++t) first_block[t + 1] = first_block[t] + tiles[t].blocks.size();
   std::optional<std::size_t> empty_file;
+  LayerPasses trial;  // the byte targets' trial selections, one buffer for every round
   // Each round's hulls; after the first only the blocks coded again (`changed`, global indices)
   // get new ones.
   std::vector<std::vector<rate::HullPoint>> hulls(blocks.size());
   std::vector<std::size_t> changed(blocks.size());
   for (std::size_t g = 0; g < changed.size(); ++g) changed[g] = g;
+  // HT: every candidate's missing MSBs from its block's settled Mb, once; extensions set their own.
+  if (ht) sync_ht_missing_msbs(tiles, in.pool);
   for (int round = 0;; ++round) {
-    if (ht) sync_ht_missing_msbs(tiles, in.pool);
     in.pool.parallel_for(changed.size(), [&](std::size_t k) {
       const auto [t, b] = blocks[changed[k]];
       hulls[changed[k]] = rate::convex_hull(tiles[t].blocks[b].passes, tiles[t].jobs[b].weight);
@@ -244,7 +246,7 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
     const rate::RateAllocator allocator(hulls);
     passes = in.params.layers[0].kind == LayerTarget::Kind::Psnr
                  ? select_for_psnr(tiles, allocator, hulls, energy, in)
-                 : select_for_bytes(tiles, allocator, hulls.size(), in, file_size, empty_file);
+                 : select_for_bytes(tiles, allocator, hulls.size(), in, file_size, empty_file, trial);
     if (ht) {
       // HT: blocks whose choice lies at the edge of the cleanups coded get the next planes coded.
       // An edge moves by two planes a round and the prediction is rarely further off than that.
