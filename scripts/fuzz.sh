@@ -81,11 +81,25 @@ if [ -d ../shared/conformance/streams ]; then
   find ../shared/conformance/streams -type f -size -64k -exec cp {} "$corpus/codestream/" \;
 fi
 
-for reader in pfm pnm bvh rhubarb codestream; do
+# The fuzzers run side by side, as many at a time as there are cores (each is one process on one
+# core): on a 2-core machine the five take three turns of FUZZ_SECONDS instead of five. Each one's
+# lines are printed once all have finished, in a fixed order.
+fuzz_one() {
+  local reader=$1
   echo "fuzzing the $reader reader for ${seconds} s"
   # -artifact_prefix keeps any crash input next to the build, where the report points.
   (cd "$dir" && "bin/${reader}_fuzz" "corpus/$reader" -max_total_time="$seconds" -max_len="$([ "$reader" = codestream ] && echo 65536 || echo 8192)" \
     -artifact_prefix="crash-$reader-" -print_final_stats=1 2>&1 | grep -E "^(stat::number_of_executed_units|==|SUMMARY|ERROR|Done)" || true)
+}
+readers=(pfm pnm bvh rhubarb codestream)
+rm -f "$dir"/crash-* "$dir"/fuzz-*.log
+for reader in "${readers[@]}"; do
+  while (($(jobs -rp | wc -l) >= $(nproc))); do wait -n || true; done
+  fuzz_one "$reader" >"$dir/fuzz-$reader.log" 2>&1 &
+done
+wait
+for reader in "${readers[@]}"; do
+  cat "$dir/fuzz-$reader.log"
   # libFuzzer's exit status is lost in the pipe above; a crash leaves its input behind instead.
   if ls "$dir"/crash-"$reader"-* >/dev/null 2>&1; then
     echo "the $reader fuzzer found a failing input: $(ls "$dir"/crash-"$reader"-*)" >&2
