@@ -167,17 +167,28 @@ class BlockDecoder {
       const int rows = std::min(4, h_ - y0);
       std::uint32_t* words = grid_.origin + (y0 / 4) * grid_.stride;
       std::int32_t* top = out_ + static_cast<std::ptrdiff_t>(y0) * w_;
-      for (int x = 0; x < w_; ++x) {
-        std::uint32_t* w = words + x;
-        if ((*w & column::kWindow) == 0) continue;  // no significant neighbour anywhere
-        if (rows == 4) {
-          significance_row(w, 0, top + x, plane, s);
-          significance_row(w, 1, top + x, plane, s);
-          significance_row(w, 2, top + x, plane, s);
-          significance_row(w, 3, top + x, plane, s);
-        } else {
-          for (int r = 0; r < rows; ++r) significance_row(w, r, top + x, plane, s);
-        }
+      if (rows == 4)
+        significance_stripe<true>(words, top, 4, plane, s);
+      else
+        significance_stripe<false>(words, top, rows, plane, s);
+    }
+  }
+
+  // One stripe of the significance pass; a full stripe (known at compile time, not tested per
+  // column) has its four rows written out.
+  template <bool kFull, class Symbols>
+  [[gnu::always_inline]] void significance_stripe(std::uint32_t* words, std::int32_t* top, int rows, int plane,
+                                                  Symbols& s) {
+    for (int x = 0; x < w_; ++x) {
+      std::uint32_t* w = words + x;
+      if ((*w & column::kWindow) == 0) continue;  // no significant neighbour anywhere
+      if constexpr (kFull) {
+        significance_row(w, 0, top + x, plane, s);
+        significance_row(w, 1, top + x, plane, s);
+        significance_row(w, 2, top + x, plane, s);
+        significance_row(w, 3, top + x, plane, s);
+      } else {
+        for (int r = 0; r < rows; ++r) significance_row(w, r, top + x, plane, s);
       }
     }
   }
@@ -227,6 +238,53 @@ class BlockDecoder {
       become_significant(w, r, column_top + r * w_, s.sign(column::sign_index(w, r)), plane);
   }
 
+  // One stripe of the cleanup pass; only a full stripe (known at compile time) may be run-length
+  // decoded (D.3.4), and has its rows written out.
+  template <bool kFull>
+  [[gnu::always_inline]] void cleanup_stripe(std::uint32_t* words, std::int32_t* top, int rows, int plane,
+                                             MqDecoder& mq, MqSymbols& s) {
+    for (int x = 0; x < w_; ++x) {
+      std::uint32_t* w = words + x;
+      if constexpr (kFull) {
+        int r = 0;
+        const std::uint32_t word = *w;
+        // Run-length mode: none of the four significant or visited, and all with the all-zero
+        // neighbourhood (zero-coding context 0 in every orientation). Tested first: at low rates
+        // most columns are such, and this test is the cheaper one.
+        if ((word & (column::kWindow | column::kVisitedAll)) == 0) {
+          if (!mq.decode(cx_[t1::kRunLengthContext])) continue;  // four insignificant samples
+          r = mq.decode(cx_[t1::kUniformContext]) << 1;
+          r |= mq.decode(cx_[t1::kUniformContext]);
+          become_significant(w, r, top + x + r * w_, s.sign(column::sign_index(w, r)), plane);
+          ++r;
+        } else if (column::all_rows_significant_or_visited(word)) {
+          // Each of the four significant or coded by the significance pass: only the marks to clear.
+          *w = word & ~column::kVisitedAll;
+          continue;
+        }
+        switch (r) {  // the rows from r on written out: constant shifts and masks
+          case 0:
+            cleanup_row(w, 0, top + x, plane, s);
+            [[fallthrough]];
+          case 1:
+            cleanup_row(w, 1, top + x, plane, s);
+            [[fallthrough]];
+          case 2:
+            cleanup_row(w, 2, top + x, plane, s);
+            [[fallthrough]];
+          case 3:
+            cleanup_row(w, 3, top + x, plane, s);
+            break;
+          default:
+            break;
+        }
+      } else {
+        for (int r = 0; r < rows; ++r) cleanup_row(w, r, top + x, plane, s);
+      }
+      *w &= ~column::kVisitedAll;
+    }
+  }
+
   // D.3.4: everything the significance pass left, with run-length decoding of quiet stripe
   // columns; then the segmentation symbol of D.5.
   [[gnu::flatten]] void cleanup_pass(int plane) {
@@ -236,48 +294,10 @@ class BlockDecoder {
       const int rows = std::min(4, h_ - y0);
       std::uint32_t* words = grid_.origin + (y0 / 4) * grid_.stride;
       std::int32_t* top = out_ + static_cast<std::ptrdiff_t>(y0) * w_;
-      for (int x = 0; x < w_; ++x) {
-        std::uint32_t* w = words + x;
-        int r = 0;
-        if (rows == 4) {
-          const std::uint32_t word = *w;
-          // Run-length mode: none of the four significant or visited, and all with the all-zero
-          // neighbourhood (zero-coding context 0 in every orientation). Tested first: at low rates
-          // most columns are such, and this test is the cheaper one.
-          if ((word & (column::kWindow | column::kVisitedAll)) == 0) {
-            if (!mq.decode(cx_[t1::kRunLengthContext])) continue;  // four insignificant samples
-            r = mq.decode(cx_[t1::kUniformContext]) << 1;
-            r |= mq.decode(cx_[t1::kUniformContext]);
-            become_significant(w, r, top + x + r * w_, s.sign(column::sign_index(w, r)), plane);
-            ++r;
-          } else if (((column::significant_rows(word) | (word >> 24)) & 0xFu) == 0xFu) {
-            // Each of the four significant or coded by the significance pass: only the marks to clear.
-            *w = word & ~column::kVisitedAll;
-            continue;
-          }
-        }
-        if (rows == 4) {
-          switch (r) {  // a full stripe's rows written out from r on: constant shifts and masks
-            case 0:
-              cleanup_row(w, 0, top + x, plane, s);
-              [[fallthrough]];
-            case 1:
-              cleanup_row(w, 1, top + x, plane, s);
-              [[fallthrough]];
-            case 2:
-              cleanup_row(w, 2, top + x, plane, s);
-              [[fallthrough]];
-            case 3:
-              cleanup_row(w, 3, top + x, plane, s);
-              break;
-            default:
-              break;
-          }
-        } else {
-          for (; r < rows; ++r) cleanup_row(w, r, top + x, plane, s);
-        }
-        *w &= ~column::kVisitedAll;
-      }
+      if (rows == 4)
+        cleanup_stripe<true>(words, top, 4, plane, mq, s);
+      else
+        cleanup_stripe<false>(words, top, rows, plane, mq, s);
     }
     if (style_.segmentation_symbols) {
       // 1010 in the UNIFORM context; a mismatch marks a corrupt pass, but the data decoded so far

@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
@@ -8,13 +9,25 @@
 
 namespace codec::dec {
 
-// An adaptive probability context packed as (state index << 1) | MPS, the index of its row in
-// t1::kMqTransitions: one lookup gives Qe and the packed context after an MPS or an LPS (with
-// the MPS swap of Table C.2 folded in).
-using MqDecoderContext = std::uint8_t;
+// An adaptive probability context packed as (Qe << 16) | (state index << 1) | MPS: the common
+// decision (an MPS without renormalisation) needs nothing but this word, and only a decision
+// that renormalises looks up its successor (kMqDecoderNext, indexed by the low byte).
+using MqDecoderContext = std::uint32_t;
 inline constexpr MqDecoderContext mq_context(int state, int mps) {
-  return static_cast<MqDecoderContext>(state << 1 | mps);
+  return static_cast<MqDecoderContext>(t1::kMqStates[static_cast<std::size_t>(state)].qe) << 16 |
+         static_cast<MqDecoderContext>(state << 1 | mps);
 }
+
+// t1::kMqTransitions with its successors packed as above: [0] after an LPS, [1] after an MPS.
+inline constexpr std::array<std::array<MqDecoderContext, 2>, 2 * t1::kMqStateCount> kMqDecoderNext = [] {
+  std::array<std::array<MqDecoderContext, 2>, 2 * t1::kMqStateCount> t{};
+  for (std::size_t i = 0; i < t.size(); ++i)
+    for (std::size_t k = 0; k < 2; ++k) {
+      const int next = t1::kMqTransitions[i].next[k];
+      t[i][k] = mq_context(next >> 1, next & 1);
+    }
+  return t;
+}();
 
 // The MQ arithmetic decoder of T.800 C.3 (INITDEC, DECODE, RENORMD, BYTEIN; Figures C.15-C.20),
 // over one codeword segment. Past the segment's end it reads 0xFF bytes: BYTEIN then sees a
@@ -40,19 +53,20 @@ class MqDecoder {
 
   int decode(MqDecoderContext& cx) {
     // DECODE (Figure C.15) with LPS_EXCHANGE (C.17) and MPS_EXCHANGE (C.16).
-    const t1::MqTransition& t = t1::kMqTransitions[cx];
-    const std::uint32_t qe = t.qe;
-    const std::uint32_t qe_high = qe << 16;  // Qe against C's upper half, without shifting C
-    const int mps = cx & 1;
+    const MqDecoderContext packed = cx;
+    const std::uint32_t qe_high = packed & 0xFFFF0000u;  // Qe against C's upper half, without shifting C
+    const std::uint32_t qe = packed >> 16;
+    const int mps = static_cast<int>(packed & 1u);
     a_ -= qe;
     if (c_ < qe_high) {
+      const auto& next = kMqDecoderNext[packed & 0xFFu];
       int d;
       if (a_ < qe) {
         d = mps;
-        cx = t.next[1];
+        cx = next[1];
       } else {
         d = 1 - mps;
-        cx = t.next[0];
+        cx = next[0];
       }
       a_ = qe;
       renormalise();
@@ -60,13 +74,14 @@ class MqDecoder {
     }
     c_ -= qe_high;
     if (a_ & 0x8000) return mps;  // the common case: an MPS with no renormalisation
+    const auto& next = kMqDecoderNext[packed & 0xFFu];
     int d;
     if (a_ < qe) {
       d = 1 - mps;
-      cx = t.next[0];
+      cx = next[0];
     } else {
       d = mps;
-      cx = t.next[1];
+      cx = next[1];
     }
     renormalise();
     return d;

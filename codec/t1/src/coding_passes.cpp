@@ -229,7 +229,7 @@ template <bool kMeasure>
         if (rows == 4) {
           // Nothing to code when each of the four is significant or was coded by the significance
           // pass; only the marks need clearing.
-          if ((column::significant_rows(before) | (before >> 24)) == 0xFu) {
+          if (column::all_rows_significant_or_visited(before)) {
             *w = before & ~column::kVisitedAll;
             continue;
           }
