@@ -49,9 +49,10 @@ void write_pgx(const std::string& path, const codec::DecodedImage& img) {
     imageio::write_bytes_atomically(stem + "_" + std::to_string(c) + ".pgx", pgx_bytes(img.components[c]));
 }
 
-// Writes `img` through OpenImageIO with its ICC profile, if any. A writer may refuse a JP2 file's
-// profile (libpng checks its header): the image is then written without it, and the returned line
-// says so. Empty when all went as asked.
+// Writes `img` through OpenImageIO with its ICC profile and resolution, if any (the display
+// resolution where the file gives one, else the capture resolution, per pixel of the components'
+// grid). A writer may refuse a JP2 file's profile (libpng checks its header): the image is then
+// written without it, and the returned line says so. Empty when all went as asked.
 std::string write_other(const std::string& path, const codec::DecodedImage& img) {
   const auto& c0 = img.components.at(0);
   int channels = static_cast<int>(img.components.size());
@@ -70,6 +71,11 @@ std::string write_other(const std::string& path, const codec::DecodedImage& img)
   out.bits_per_sample = c0.precision;
   out.is_signed = c0.is_signed;
   out.icc_profile = img.icc_profile;
+  const codec::GridResolution& r = img.display_resolution.given() ? img.display_resolution : img.capture_resolution;
+  if (r.given()) {
+    out.x_pixels_per_metre = r.horizontal / c0.dx;
+    out.y_pixels_per_metre = r.vertical / c0.dy;
+  }
   out.pixels.resize(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) *
                     static_cast<std::size_t>(channels));
   for (int c = 0; c < channels; ++c) {

@@ -132,6 +132,43 @@ TEST(ApiDecode, IccProfileReachesTheCaller) {
   EXPECT_TRUE(gpuj2k::decode(e.j2k.data(), e.j2k.size()).icc_profile.empty());
 }
 
+// EncodeOptions' resolutions go into a JP2 file's resolution box, and read_info and decode give
+// them back (within the box's 16-bit fractions), on the grid --reduce leaves; a resolution the
+// box cannot hold is refused before coding.
+TEST(ApiDecode, ResolutionRoundTrips) {
+  const imageio::Image image = testimages::generate(testimages::Pattern::Mix, 16, 8, 3, 8);
+  std::vector<std::uint8_t> samples;
+  for (float v : image.pixels) samples.push_back(static_cast<std::uint8_t>(v));
+  gpuj2k::ImageView view;
+  view.data = samples.data();
+  view.size_bytes = samples.size();
+  view.width = 16;
+  view.height = 8;
+  view.components = 3;
+  gpuj2k::EncodeOptions options;
+  options.lossless = true;
+  options.format = gpuj2k::Format::Jp2;
+  options.levels = 2;
+  options.capture_resolution = {3779.527559, 2834.645669};  // 96 and 72 dots per inch
+  options.display_resolution = {10000, 10000};
+  const std::vector<std::uint8_t> file = gpuj2k::encode(view, options);
+  const gpuj2k::ImageInfo info = gpuj2k::read_info(file.data(), file.size());
+  EXPECT_NEAR(info.capture_resolution.vertical, 3779.527559, 0.01);
+  EXPECT_NEAR(info.capture_resolution.horizontal, 2834.645669, 0.01);
+  EXPECT_DOUBLE_EQ(info.display_resolution.vertical, 10000);
+  gpuj2k::DecodeOptions reduced;
+  reduced.reduce = 1;
+  const gpuj2k::DecodedImage half = gpuj2k::decode(file.data(), file.size(), reduced);
+  EXPECT_NEAR(half.capture_resolution.vertical, 3779.527559 / 2, 0.01);
+  EXPECT_DOUBLE_EQ(half.display_resolution.horizontal, 5000);
+  options.format = gpuj2k::Format::Codestream;  // no box to put them in
+  const std::vector<std::uint8_t> bare = gpuj2k::encode(view, options);
+  EXPECT_FALSE(gpuj2k::read_info(bare.data(), bare.size()).capture_resolution.given());
+  options.format = gpuj2k::Format::Jp2;
+  options.capture_resolution = {-1, 72};
+  EXPECT_THROW(gpuj2k::encode(view, options), gpuj2k::Error);
+}
+
 TEST(ApiDecode, InfoMatchesTheDecodeAndWindowsMatchTheWhole) {
   const Encoded e = encode_lossless(64, 48, 3, 8);
   const gpuj2k::DecodedImage whole = gpuj2k::decode(e.j2k.data(), e.j2k.size());

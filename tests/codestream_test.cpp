@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -354,18 +355,45 @@ TEST(Jp2, RgbaWithMixedDepthsHasBpccAndCdef) {
 }
 
 TEST(Jp2, GreyAlphaCdef) {
-  cs::Jp2Header h{3, 3, {{8, false}, {8, false}}};
+  cs::Jp2Header h{3, 3, {{8, false}, {8, false}}, {}, {}};
   const auto inner = boxes(boxes(cs::wrap_jp2({}, h))[2].second);
   ASSERT_EQ(inner.size(), 3u);
   EXPECT_EQ(inner[1].second, bytes({1, 0, 0, 0, 0, 0, 17}));
   EXPECT_EQ(inner[2].second, bytes({0, 2, 0, 0, 0, 0, 0, 1, 0, 1, 0, 1, 0, 0}));
 }
 
+// The resolution box follows the other header boxes: capture, then display, each VR N, D, HR N, D,
+// VR E, HR E (T.800 I.5.3.7), the fractions as close as 16-bit terms allow.
+TEST(Jp2, ResolutionBox) {
+  cs::Jp2Header h{3, 3, {{8, false}, {8, false}, {8, false}}, {2000, 3780.5}, {}};
+  const auto inner = boxes(boxes(cs::wrap_jp2({}, h))[2].second);
+  ASSERT_EQ(inner.size(), 3u);
+  EXPECT_EQ(inner[2].first, "res ");
+  const auto res = boxes(inner[2].second);
+  ASSERT_EQ(res.size(), 1u);
+  EXPECT_EQ(res[0].first, "resc");
+  // 2000 = 2000 / 1 and 3780.5 = 7561 / 2, both with exponent 0: exact.
+  EXPECT_EQ(res[0].second, bytes({0x07, 0xD0, 0, 1, 0x1D, 0x89, 0, 2, 0, 0}));
+  h.display = {72, 1e9};
+  const auto both = boxes(boxes(boxes(cs::wrap_jp2({}, h))[2].second)[2].second);
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_EQ(both[1].first, "resd");
+
+  for (const double v : {1.0, 72.0, 2834.645669, 3779.527559, 12345.678, 65535.0, 65536.0, 1e-3, 3.1e7, 6.5535e131}) {
+    const cs::Jp2ResolutionFraction f = cs::resolution_fraction(v);
+    ASSERT_GT(f.denominator, 0);
+    const double back = f.numerator / static_cast<double>(f.denominator) * std::pow(10.0, f.exponent);
+    EXPECT_NEAR(back / v, 1.0, 1e-5) << v;
+  }
+  for (const double bad : {0.0, -1.0, std::nan(""), 1e200})
+    EXPECT_THROW(cs::resolution_fraction(bad), cs::CodestreamError);
+}
+
 TEST(Jp2, Rejects) {
-  EXPECT_THROW(cs::wrap_jp2({}, cs::Jp2Header{1, 1, {}}), cs::CodestreamError);
-  EXPECT_THROW(cs::wrap_jp2({}, cs::Jp2Header{1, 1, std::vector<cs::Jp2Component>(5)}), cs::CodestreamError);
-  EXPECT_THROW(cs::wrap_jp2({}, cs::Jp2Header{0, 1, {{8, false}}}), cs::CodestreamError);
-  EXPECT_THROW(cs::wrap_jp2({}, cs::Jp2Header{1, 1, {{39, false}}}), cs::CodestreamError);
+  EXPECT_THROW(cs::wrap_jp2({}, cs::Jp2Header{1, 1, {}, {}, {}}), cs::CodestreamError);
+  EXPECT_THROW(cs::wrap_jp2({}, cs::Jp2Header{1, 1, std::vector<cs::Jp2Component>(5), {}, {}}), cs::CodestreamError);
+  EXPECT_THROW(cs::wrap_jp2({}, cs::Jp2Header{0, 1, {{8, false}}, {}, {}}), cs::CodestreamError);
+  EXPECT_THROW(cs::wrap_jp2({}, cs::Jp2Header{1, 1, {{39, false}}, {}, {}}), cs::CodestreamError);
 }
 
 // ---------------------------------------------------------------------------------------------

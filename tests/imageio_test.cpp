@@ -13,6 +13,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <tuple>
 #include <vector>
 
@@ -911,6 +912,29 @@ TEST(IoError, MessageIsOneLine) {
 }  // namespace
 
 // An ICC profile travels through the formats that can carry one (j2kdec hands a JP2 file's on).
+// A resolution set on an image is written and read back in pixels per metre, across and down
+// apart (non-square pixels): TIFF keeps it as a float per centimetre, PNG as whole pixels per metre,
+// JPEG (JFIF) as whole dots per centimetre. PNM has no place for one.
+TEST_F(ImageIoTest, ResolutionRoundTripsThroughTiffPngAndJpeg) {
+  imageio::Image image = make_image(5, 3, 3, 8, false);
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = static_cast<float>((i * 37) % 256);
+  image.x_pixels_per_metre = 3780;
+  image.y_pixels_per_metre = 2000;
+  for (const auto& [name, tolerance] :
+       {std::pair<std::string, double>{"res.tif", 0.01}, {"res.png", 1.0}, {"res.jpg", 100.0}}) {
+    SCOPED_TRACE(name);
+    imageio::write_image(path(name), image);
+    const imageio::Image back = imageio::read_image(path(name));
+    EXPECT_NEAR(back.x_pixels_per_metre, 3780, tolerance);
+    EXPECT_NEAR(back.y_pixels_per_metre, 2000, tolerance);
+  }
+  imageio::write_image(path("res.ppm"), image);
+  EXPECT_EQ(imageio::read_image(path("res.ppm")).x_pixels_per_metre, 0);
+  image.x_pixels_per_metre = image.y_pixels_per_metre = 0;
+  imageio::write_image(path("none.png"), image);
+  EXPECT_EQ(imageio::read_image(path("none.png")).x_pixels_per_metre, 0);
+}
+
 TEST_F(ImageIoTest, IccProfileRoundTripsThroughTiffAndPng) {
   imageio::Image image = make_image(5, 3, 3, 8, false);
   for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = static_cast<float>((i * 37) % 256);

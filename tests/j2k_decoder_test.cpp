@@ -958,6 +958,67 @@ TEST(J2kDecoderJp2, IccProfileIsHandedOn) {
   refused(tiny, "the ICC profile says it is 44 bytes long");
 }
 
+// A capture or display resolution box's body (T.800 I.5.3.7.1): VR N, D, HR N, D, VR E, HR E.
+std::vector<std::uint8_t> resolution_body(std::uint16_t vn, std::uint16_t vd, std::uint16_t hn, std::uint16_t hd,
+                                          std::int8_t ve, std::int8_t he) {
+  std::vector<std::uint8_t> b;
+  for (const std::uint16_t v : {vn, vd, hn, hd}) {
+    b.push_back(static_cast<std::uint8_t>(v >> 8));
+    b.push_back(static_cast<std::uint8_t>(v));
+  }
+  b.push_back(static_cast<std::uint8_t>(ve));
+  b.push_back(static_cast<std::uint8_t>(he));
+  return b;
+}
+
+std::vector<std::uint8_t> res_box(const std::vector<std::vector<std::uint8_t>>& inner) {
+  std::vector<std::uint8_t> body;
+  for (const auto& b : inner) body.insert(body.end(), b.begin(), b.end());
+  return box("res ", body);
+}
+
+// The resolution boxes reach DecodedImage as N / D * 10^E points per metre, halved per --reduce
+// level; a malformed one is refused with a line naming it.
+TEST(J2kDecoderJp2, ResolutionBoxesAreRead) {
+  const auto stream = encode(image(Pattern::Mix, 21, 13, 3, 8), lossless());
+  const auto file = jp2_file(
+      stream, {test_support::ihdr(21, 13, 3, 8), res_box({box("resc", resolution_body(20000, 1, 7561, 2, -1, 0)),
+                                                          box("resd", resolution_body(72, 1, 144, 2, 2, 2))})});
+  for (const bool header_only : {false, true}) {
+    SCOPED_TRACE(header_only ? "read_header" : "decode");
+    const codec::DecodedImage img = header_only ? codec::read_header(file, options()) : codec::decode(file, options());
+    EXPECT_DOUBLE_EQ(img.capture_resolution.vertical, 2000.0);
+    EXPECT_DOUBLE_EQ(img.capture_resolution.horizontal, 3780.5);
+    EXPECT_DOUBLE_EQ(img.display_resolution.vertical, 7200.0);
+    EXPECT_DOUBLE_EQ(img.display_resolution.horizontal, 7200.0);
+  }
+  codec::DecodeOptions reduced = options();
+  reduced.reduce = 1;
+  const codec::DecodedImage half = codec::decode(file, reduced);
+  EXPECT_DOUBLE_EQ(half.capture_resolution.vertical, 1000.0);
+  EXPECT_DOUBLE_EQ(half.capture_resolution.horizontal, 1890.25);
+  // Either box alone; none at all in a plain codestream.
+  const codec::DecodedImage display_only = codec::decode(
+      jp2_file(stream, {test_support::ihdr(21, 13, 3, 8), res_box({box("resd", resolution_body(1, 1, 3, 1, 3, 3))})}),
+      options());
+  EXPECT_FALSE(display_only.capture_resolution.given());
+  EXPECT_DOUBLE_EQ(display_only.display_resolution.horizontal, 3000.0);
+  EXPECT_FALSE(codec::decode(stream, options()).capture_resolution.given());
+
+  auto refused = [&](const std::vector<std::uint8_t>& res, const std::string& says) {
+    try {
+      (void)codec::decode(jp2_file(stream, {test_support::ihdr(21, 13, 3, 8), res}), options());
+      ADD_FAILURE() << "accepted: " << says;
+    } catch (const codec::DecodeError& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  };
+  refused(res_box({box("resc", resolution_body(1, 0, 1, 1, 0, 0))}), "resc has a zero denominator");
+  std::vector<std::uint8_t> short_body = resolution_body(1, 1, 1, 1, 0, 0);
+  short_body.pop_back();
+  refused(res_box({box("resd", short_body)}), "resd holds 9 bytes, not 10");
+}
+
 // ---- Robustness: truncated and corrupted streams ----
 
 // Decodes, accepting a DecodeError; anything else (another exception, a crash, a sanitizer

@@ -11,11 +11,13 @@
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "codec/encoder/encoder.h"
 #include "glcontext/context.h"
 #include "imageio/read.h"
+#include "support/external_decode.h"
 #include "support/jp2_boxes.h"
 #include "support/scratch_dir.h"
 #include "testimages/patterns.h"
@@ -267,4 +269,69 @@ TEST_F(J2kdecCli, IccProfileIsHandedToTheOutput) {
   const imageio::Image written = imageio::read_image((scratch / "refused.png").string());
   EXPECT_TRUE(written.icc_profile.empty());
   EXPECT_EQ(written.pixels, plain.pixels);
+}
+
+namespace {
+
+// A JP2 file of a 64x48 test image with the given resolutions.
+fs::path jp2_with_resolution(const codec::GridResolution& capture, const codec::GridResolution& display,
+                             const fs::path& file) {
+  codec::EncodeParams p;
+  p.dwt = codec::DwtDevice::Cpu;
+  p.capture_resolution = capture;
+  p.display_resolution = display;
+  const imageio::Image img = testimages::generate(testimages::Pattern::Mix, 64, 48, 3, 8);
+  const auto bytes = codec::encode(codec::to_source_image(img, "mix"), p, codec::FileFormat::Jp2);
+  std::ofstream(file, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  return file;
+}
+
+}  // namespace
+
+// A JP2 file's resolution reaches TIFF, PNG and JPEG outputs in pixels per metre (the display
+// resolution where the file has one, else the capture resolution), on the grid --reduce leaves;
+// j2kenc carries an input file's resolution into the JP2 file it writes; and the boxes are Grok's:
+// grk_decompress reads ours, and we read what grk_compress -Q writes.
+TEST_F(J2kdecCli, ResolutionReachesTheOutput) {
+  const fs::path capture_only = jp2_with_resolution({2000, 3780}, {}, scratch / "capture.jp2");
+  auto decoded = [&](const fs::path& in, const std::string& name, const std::string& more = "") {
+    const auto r = j2kdec("-i '" + in.string() + "' -o '" + (scratch / name).string() + "' " + more, scratch.path());
+    EXPECT_EQ(r.exit_code, 0) << name << ": " << r.err;
+    return imageio::read_image((scratch / name).string());
+  };
+  for (const auto& [name, tolerance] :
+       {std::pair<std::string, double>{"res.tif", 0.05}, {"res.png", 1.0}, {"res.jpg", 100.0}}) {
+    const imageio::Image out = decoded(capture_only, name);
+    EXPECT_NEAR(out.x_pixels_per_metre, 3780, tolerance) << name;
+    EXPECT_NEAR(out.y_pixels_per_metre, 2000, tolerance) << name;
+  }
+  const imageio::Image half = decoded(capture_only, "half.png", "--reduce 1");
+  EXPECT_NEAR(half.x_pixels_per_metre, 1890, 1.0);
+  EXPECT_NEAR(half.y_pixels_per_metre, 1000, 1.0);
+  const imageio::Image display =
+      decoded(jp2_with_resolution({2000, 3780}, {7200, 5000}, scratch / "display.jp2"), "display.png");
+  EXPECT_NEAR(display.x_pixels_per_metre, 5000, 1.0);
+  EXPECT_NEAR(display.y_pixels_per_metre, 7200, 1.0);
+  EXPECT_EQ(decoded(stream, "none.png").x_pixels_per_metre, 0);  // a codestream has none
+
+  // j2kenc: the PNG's resolution into the JP2 file, and back out.
+  const std::string encode = std::string("'") + J2KENC_PATH + "' -q -i '" + (scratch / "res.png").string() + "' -o '" +
+                             (scratch / "again.jp2").string() + "' --lossless";
+  ASSERT_EQ(run(encode, scratch.path()).exit_code, 0);
+  const imageio::Image again = decoded(scratch / "again.jp2", "again.png");
+  EXPECT_NEAR(again.x_pixels_per_metre, 3780, 1.0);
+  EXPECT_NEAR(again.y_pixels_per_metre, 2000, 1.0);
+
+  if (!test_support::have_tool("grk_decompress") || !test_support::have_tool("grk_compress"))
+    GTEST_SKIP() << "grk_decompress or grk_compress not installed: the cross-check with Grok was not run";
+  const imageio::Image by_grok = test_support::decode_with("grk_decompress", capture_only, scratch / "grok.tif");
+  EXPECT_NEAR(by_grok.x_pixels_per_metre, 3780, 0.05);
+  EXPECT_NEAR(by_grok.y_pixels_per_metre, 2000, 0.05);
+  const std::string grok_encode = "grk_compress -i '" + (scratch / "res.png").string() + "' -o '" +
+                                  (scratch / "grok.jp2").string() + "' -Q 3780,2000 >/dev/null";
+  ASSERT_EQ(run(grok_encode, scratch.path()).exit_code, 0);
+  const imageio::Image from_grok = decoded(scratch / "grok.jp2", "from_grok.png");
+  EXPECT_NEAR(from_grok.x_pixels_per_metre, 3780, 1.0);
+  EXPECT_NEAR(from_grok.y_pixels_per_metre, 2000, 1.0);
 }

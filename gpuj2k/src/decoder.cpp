@@ -82,6 +82,8 @@ codec::DecodedImage run_decode(std::span<const std::uint8_t> bytes, const Decode
   return image;
 }
 
+GridResolution resolution_of(const codec::GridResolution& r) { return GridResolution{r.vertical, r.horizontal}; }
+
 DecodedImage to_public(codec::DecodedImage&& image) {
   DecodedImage out;
   out.x0 = image.x0;
@@ -90,6 +92,8 @@ DecodedImage to_public(codec::DecodedImage&& image) {
   out.y1 = image.y1;
   out.colour_space = image.jp2_colour_space;
   out.icc_profile = std::move(image.icc_profile);
+  out.capture_resolution = resolution_of(image.capture_resolution);
+  out.display_resolution = resolution_of(image.display_resolution);
   out.warnings = std::move(image.warnings);
   for (codec::DecodedComponent& c : image.components) {
     DecodedComponent d;
@@ -210,6 +214,8 @@ ImageInfo read_info(const void* data, std::size_t size, const DecodeOptions& opt
     out.y1 = header.y1;
     out.colour_space = header.jp2_colour_space;
     out.icc_profile = header.icc_profile;
+    out.capture_resolution = resolution_of(header.capture_resolution);
+    out.display_resolution = resolution_of(header.display_resolution);
     for (const codec::DecodedComponent& c : header.components) out.components.push_back(info_of(c));
     return out;
   });

@@ -150,6 +150,8 @@ codec::EncodeParams base_params(const EncodeOptions& o) {
   p.block_style.segmentation_symbols = o.modes.segmentation_symbols;
   p.guard_bits = o.guard_bits;
   p.comment = o.comment;
+  p.capture_resolution = codec::GridResolution{o.capture_resolution.vertical, o.capture_resolution.horizontal};
+  p.display_resolution = codec::GridResolution{o.display_resolution.vertical, o.display_resolution.horizontal};
   p.threads = o.threads;
   p.engine = o.engine ? &o.engine->state().encode : nullptr;
   p.skip_passes = !o.code_every_pass;
@@ -242,9 +244,19 @@ std::vector<std::uint8_t> encode_source(codec::SourceImage&& image, const Encode
   return bytes;
 }
 
-codec::SourceImage read_source(const std::string& path) {
-  if (auto packed = imageio::read_packed_if_native(path)) return codec::to_source_image(std::move(*packed), path);
-  return codec::to_source_image(imageio::read_image(path), path);
+// An image file's samples, and its resolution where the format records one (TIFF, PNG, JPEG, BMP;
+// PNM records none).
+struct SourceFile {
+  codec::SourceImage image;
+  GridResolution resolution;
+};
+
+SourceFile read_source(const std::string& path) {
+  if (auto packed = imageio::read_packed_if_native(path))
+    return SourceFile{codec::to_source_image(std::move(*packed), path), {}};
+  imageio::Image image = imageio::read_image(path);
+  const GridResolution resolution{image.y_pixels_per_metre, image.x_pixels_per_metre};
+  return SourceFile{codec::to_source_image(std::move(image), path), resolution};
 }
 
 }  // namespace
@@ -258,8 +270,12 @@ std::vector<std::uint8_t> encode_file(const std::string& input_path, const Encod
   return guarded([&] {
     base_params(options);  // option errors should not wait for a large image to be read
     const auto start = Clock::now();
-    codec::SourceImage image = read_source(input_path);
-    return encode_source(std::move(image), options, ms_since(start), report);
+    SourceFile file = read_source(input_path);
+    if (options.capture_resolution.given() || !file.resolution.given())
+      return encode_source(std::move(file.image), options, ms_since(start), report);
+    EncodeOptions with_resolution = options;  // the file's resolution, for a JP2/JPH resolution box
+    with_resolution.capture_resolution = file.resolution;
+    return encode_source(std::move(file.image), with_resolution, ms_since(start), report);
   });
 }
 

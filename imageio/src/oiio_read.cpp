@@ -85,6 +85,27 @@ void read_integers(OIIO::ImageInput& in, const std::string& path, OIIO::TypeDesc
   for (std::size_t i = 0; i < buffer.size(); ++i) image.pixels[i] = float(buffer[i]);
 }
 
+// The file's resolution in pixels per metre, from OpenImageIO's XResolution, YResolution and
+// ResolutionUnit (readers report inches, centimetres or metres); a file that gives no unit gives
+// only an aspect ratio, which is not kept.
+void read_resolution(const OIIO::ImageSpec& spec, Image& image) {
+  const float x = spec.get_float_attribute("XResolution"), y = spec.get_float_attribute("YResolution");
+  if (!(x > 0) || !(y > 0)) return;
+  const std::string unit = spec.get_string_attribute("ResolutionUnit");
+  double per_unit_to_per_metre = 0;
+  if (unit == "in" || unit == "inch")
+    per_unit_to_per_metre = 100 / 2.54;
+  else if (unit == "cm")
+    per_unit_to_per_metre = 100;
+  else if (unit == "mm")
+    per_unit_to_per_metre = 1000;
+  else if (unit == "m")
+    per_unit_to_per_metre = 1;
+  if (per_unit_to_per_metre == 0) return;
+  image.x_pixels_per_metre = x * per_unit_to_per_metre;
+  image.y_pixels_per_metre = y * per_unit_to_per_metre;
+}
+
 }  // namespace
 
 namespace detail {
@@ -131,6 +152,8 @@ Image read_with_oiio(const std::string& path) {
     const auto* bytes = static_cast<const std::uint8_t*>(icc->data());
     image.icc_profile.assign(bytes, bytes + icc->type().numelements() * icc->nvalues());
   }
+
+  read_resolution(spec, image);
 
   switch (kind.read_as.basetype) {
     case OIIO::TypeDesc::UINT8:

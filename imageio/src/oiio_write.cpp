@@ -4,6 +4,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include "atomic_file.h"
@@ -71,6 +72,17 @@ void write_with_oiio(const std::string& path, const Image& image) {
   spec.attribute("oiio:UnassociatedAlpha", 1);
   // Some writers (PNM in newer OpenImageIO) pick their bit depth from this.
   if (!image.is_float) spec.attribute("oiio:BitsPerSample", int(type.size() * 8));
+  if (image.x_pixels_per_metre > 0 && image.y_pixels_per_metre > 0) {
+    // Per centimetre: a unit TIFF, PNG (pHYs, per metre) and JPEG (JFIF) writers all convert from.
+    spec.attribute("XResolution", static_cast<float>(image.x_pixels_per_metre / 100));
+    spec.attribute("YResolution", static_cast<float>(image.y_pixels_per_metre / 100));
+    spec.attribute("ResolutionUnit", "cm");
+    // The pixel's width over its height, for OpenImageIO's TIFF writer alone: it derives
+    // YResolution from it (XResolution times it) and would write square pixels without it, while
+    // its JPEG writer divides by it instead (OpenImageIO 2.4) and reads YResolution right.
+    if (std::string_view(out->format_name()) == "tiff")
+      spec.attribute("PixelAspectRatio", static_cast<float>(image.y_pixels_per_metre / image.x_pixels_per_metre));
+  }
   if (!image.icc_profile.empty())
     spec.attribute("ICCProfile", OIIO::TypeDesc(OIIO::TypeDesc::UINT8, static_cast<int>(image.icc_profile.size())),
                    image.icc_profile.data());

@@ -1,5 +1,7 @@
 #include "codec/codestream/jp2.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "codec/codestream/byte_writer.h"
@@ -99,7 +101,60 @@ void write_cdef(ByteWriter& out, const Jp2Header& h) {
   end_box(out, box);
 }
 
+// The resolution superbox (I.5.3.7): capture then display, each VR N, D, HR N, D, VR E, HR E.
+void write_res(ByteWriter& out, const Jp2Header& h) {
+  const std::size_t res = begin_box(out, fourcc("res "));
+  const auto write_one = [&](const char(&type)[5], const Jp2Resolution& r) {
+    const Jp2ResolutionFraction v = resolution_fraction(r.vertical), hz = resolution_fraction(r.horizontal);
+    const std::size_t box = begin_box(out, fourcc(type));
+    out.u16(v.numerator);
+    out.u16(v.denominator);
+    out.u16(hz.numerator);
+    out.u16(hz.denominator);
+    out.u8(static_cast<std::uint8_t>(v.exponent));
+    out.u8(static_cast<std::uint8_t>(hz.exponent));
+    end_box(out, box);
+  };
+  if (h.capture.given()) write_one("resc", h.capture);
+  if (h.display.given()) write_one("resd", h.display);
+  end_box(out, res);
+}
+
 }  // namespace
+
+Jp2ResolutionFraction resolution_fraction(double points_per_metre) {
+  if (!(points_per_metre > 0) || !std::isfinite(points_per_metre))
+    throw CodestreamError("JP2: a resolution must be a positive number of grid points per metre, not " +
+                          std::to_string(points_per_metre));
+  constexpr double kMax = 65535 * (1 + 1e-12);  // with room for the divisions' rounding
+  // The smallest exponent from 0 up that leaves the value at most 65535, then the denominator
+  // carries its fraction; a negative exponent only below one point per metre. (Negative exponents
+  // are the standard's, signed bytes, but grk_decompress 10 misreads them: an exponent of -1 gave
+  // its TIFF a zero denominator.)
+  int exponent = 0;
+  while (points_per_metre / std::pow(10.0, exponent) > kMax) ++exponent;
+  while (exponent > -128 && points_per_metre / std::pow(10.0, exponent) < 1) --exponent;
+  if (exponent > 127)
+    throw CodestreamError("JP2: a resolution of " + std::to_string(points_per_metre) +
+                          " points per metre is more than the box holds (65535e127)");
+  const double value = points_per_metre / std::pow(10.0, exponent);
+  // Convergents p/q of the continued fraction of `value` while both fit in 16 bits: each is the
+  // best approximation with a denominator that small.
+  std::int64_t p0 = 1, q0 = 0, p1 = static_cast<std::int64_t>(std::floor(value)), q1 = 1;
+  double rest = value - std::floor(value);
+  while (rest > 1e-12) {
+    const double inverse = 1 / rest;
+    const auto a = static_cast<std::int64_t>(std::floor(inverse));
+    const std::int64_t p2 = a * p1 + p0, q2 = a * q1 + q0;
+    if (p2 > 65535 || q2 > 65535) break;
+    p0 = p1, q0 = q1, p1 = p2, q1 = q2;
+    rest = inverse - static_cast<double>(a);
+  }
+  p1 = std::min<std::int64_t>(p1, 65535);  // the value may exceed 65535 by that rounding
+  if (p1 == 0) p1 = 1;                     // below 1e-128 points per metre: the smallest the box holds
+  return Jp2ResolutionFraction{static_cast<std::uint16_t>(p1), static_cast<std::uint16_t>(q1),
+                               static_cast<std::int8_t>(exponent)};
+}
 
 Jp2Header jp2_header_for(const Siz& siz) {
   validate_siz(siz);
@@ -139,6 +194,7 @@ std::vector<std::uint8_t> wrap(const std::vector<std::uint8_t>& codestream, cons
   if (depths_differ) write_bpcc(out, h);
   write_colr(out, h);
   if (has_opacity) write_cdef(out, h);
+  if (h.capture.given() || h.display.given()) write_res(out, h);
   end_box(out, jp2h);
 
   // The codestream box may exceed 4 GiB: then LBox = 1 and the length goes in XLBox (I.4).

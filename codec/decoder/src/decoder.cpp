@@ -1,6 +1,7 @@
 #include "codec/decoder/decoder.h"
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iterator>
 #include <fstream>
@@ -98,6 +99,13 @@ DecodedImage allocate_image(const dec::Siz& siz, const Rect& window, const std::
     img.components.push_back(std::move(out));
   }
   return img;
+}
+
+// A resolution of the full reference grid on the grid `reduce` levels down: the same area in
+// 2^reduce times fewer points.
+GridResolution reduced_resolution(const GridResolution& r, int reduce) {
+  const double scale = std::ldexp(1.0, -reduce);
+  return GridResolution{r.vertical * scale, r.horizontal * scale};
 }
 
 bool rewrites_channels(const dec::Jp2File& jp2) {
@@ -205,6 +213,8 @@ DecodedImage read_header(std::span<const std::uint8_t> bytes, const DecodeOption
   if (opened.jp2) {
     image.jp2_colour_space = opened.jp2->colour_space;
     image.icc_profile = opened.jp2->icc_profile;
+    image.capture_resolution = reduced_resolution(opened.jp2->capture_resolution, options.reduce);
+    image.display_resolution = reduced_resolution(opened.jp2->display_resolution, options.reduce);
   }
   image.warnings = opened.cs.warnings;
   return image;
@@ -267,7 +277,11 @@ DecodedImage decode_with(std::span<const std::uint8_t> bytes, const DecodeOption
   const bool rows_to_sink = sink && options.components.empty() && !(jp2 && rewrites_channels(*jp2));
   DecodedImage image = allocate_image(cs.siz, window, selected, options, !rows_to_sink);
   image.warnings = cs.warnings;
-  if (jp2) image.icc_profile = jp2->icc_profile;
+  if (jp2) {
+    image.icc_profile = jp2->icc_profile;
+    image.capture_resolution = reduced_resolution(jp2->capture_resolution, options.reduce);
+    image.display_resolution = reduced_resolution(jp2->display_resolution, options.reduce);
+  }
   if (rows_to_sink) {
     if (jp2) image.jp2_colour_space = jp2->colour_space;
     sink->begin(image);

@@ -1,5 +1,6 @@
 #include "jp2_reader.h"
 
+#include <cmath>
 #include <string>
 
 #include "byte_reader.h"
@@ -126,6 +127,30 @@ std::vector<std::uint8_t> read_icc_profile(ByteReader& in) {
   return {profile.begin(), profile.end()};
 }
 
+// A capture or display resolution box (I.5.3.7.1, I.5.3.7.2): VR N, D, HR N, D (16 bits each),
+// then VR E and HR E (signed bytes); resolution = N / D * 10^E grid points per metre.
+GridResolution read_resolution(ByteReader in, const char* box) {
+  if (in.remaining() != 10) in.fail(std::string(box) + " holds " + std::to_string(in.remaining()) + " bytes, not 10");
+  const double vn = in.u16("VR numerator"), vd = in.u16("VR denominator");
+  const double hn = in.u16("HR numerator"), hd = in.u16("HR denominator");
+  const auto ve = static_cast<std::int8_t>(in.u8("VR exponent"));
+  const auto he = static_cast<std::int8_t>(in.u8("HR exponent"));
+  if (vd == 0 || hd == 0) in.fail(std::string(box) + " has a zero denominator");
+  return GridResolution{vn / vd * std::pow(10.0, ve), hn / hd * std::pow(10.0, he)};
+}
+
+// The resolution superbox (I.5.3.7): a capture and/or a display resolution box, each at most once.
+void read_res(ByteReader inner, Jp2File& f) {
+  while (!inner.at_end()) {
+    const Box sub = next_box(inner);
+    ByteReader body(sub.body, sub.body_offset);
+    if (sub.type == box_type("resc"))
+      f.capture_resolution = read_resolution(body, "resc");
+    else if (sub.type == box_type("resd"))
+      f.display_resolution = read_resolution(body, "resd");
+  }
+}
+
 void read_jp2_header(ByteReader inner, Jp2File& f) {
   bool have_colr = false;
   while (!inner.at_end()) {
@@ -151,6 +176,8 @@ void read_jp2_header(ByteReader inner, Jp2File& f) {
       f.channel_sources = read_cmap(body);
     } else if (sub.type == box_type("cdef")) {
       f.channel_definitions = read_cdef(body);
+    } else if (sub.type == box_type("res ")) {
+      read_res(body, f);
     }
   }
   if (f.palette.entries > 0 && f.channel_sources.empty())

@@ -4,6 +4,8 @@
 #include <span>
 #include <vector>
 
+#include "codec/decoder/decoder.h"
+
 namespace codec::dec {
 
 // A palette (pclr, T.800 I.5.3.4): `entries` rows of one value per column.
@@ -41,6 +43,7 @@ struct Jp2File {
   Jp2Palette palette;                                     // entries 0: no palette
   std::vector<Jp2ChannelSource> channel_sources;          // from cmap; empty: component i is channel i
   std::vector<Jp2ChannelDefinition> channel_definitions;  // from cdef; empty: none
+  GridResolution capture_resolution, display_resolution;  // from res (resc, resd); 0: none
 };
 
 bool looks_like_jp2(std::span<const std::uint8_t> bytes);

@@ -270,13 +270,33 @@ std::size_t tile_packets_length(const CodedTile& coded, const EncodeParams& para
   return total;
 }
 
+// A resolution for a JP2 resolution box: none (both 0), or both positive and within what the
+// box holds (65535 * 10^127 points per metre), refused before any coding.
+void check_resolution(const GridResolution& r, const char* which) {
+  if (r.vertical == 0 && r.horizontal == 0) return;
+  const auto fits = [](double v) { return v > 0 && v <= 65535e127; };
+  if (!fits(r.vertical) || !fits(r.horizontal))
+    throw std::invalid_argument(std::string("the ") + which + " resolution must be two positive numbers of points " +
+                                "per metre (at most 6.5535e131), not " + std::to_string(r.vertical) +
+                                " vertically and " + std::to_string(r.horizontal) + " horizontally");
+}
+
+// The JP2/JPH header boxes' description of the image: SIZ's, with the resolutions asked for.
+cs::Jp2Header jp2_header(const cs::Siz& siz, const EncodeParams& params) {
+  cs::Jp2Header h = cs::jp2_header_for(siz);
+  h.capture = cs::Jp2Resolution{params.capture_resolution.vertical, params.capture_resolution.horizontal};
+  h.display = cs::Jp2Resolution{params.display_resolution.vertical, params.display_resolution.horizontal};
+  return h;
+}
+
 // The codestream as the file `format` asks for: bare, or in a JP2 or JPH file's boxes.
-std::vector<std::uint8_t> in_file(FileFormat format, std::vector<std::uint8_t> codestream, const cs::Siz& siz) {
+std::vector<std::uint8_t> in_file(FileFormat format, std::vector<std::uint8_t> codestream, const cs::Siz& siz,
+                                  const EncodeParams& params) {
   switch (format) {
     case FileFormat::Jp2:
-      return cs::wrap_jp2(codestream, cs::jp2_header_for(siz));
+      return cs::wrap_jp2(codestream, jp2_header(siz, params));
     case FileFormat::Jph:
-      return cs::wrap_jph(codestream, cs::jp2_header_for(siz));
+      return cs::wrap_jph(codestream, jp2_header(siz, params));
     case FileFormat::Codestream:
       break;
   }
@@ -288,6 +308,8 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
   // T.814 Annex D: the JPH brand promises an HTJ2K codestream.
   if (format == FileFormat::Jph && !params.ht)
     throw std::invalid_argument("a JPH (.jph) file holds an HTJ2K codestream: turn on HT coding (--ht)");
+  check_resolution(params.capture_resolution, "capture");
+  check_resolution(params.display_resolution, "display");
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -338,7 +360,7 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
       writer.add_tile_part(static_cast<unsigned>(tiles[t].tile.index), 0, 1,
                            tile_body(tiles[t], params, passes[t], layers, pool));
     std::vector<std::uint8_t> codestream = writer.finish();
-    return in_file(format, std::move(codestream), header.siz);
+    return in_file(format, std::move(codestream), header.siz, params);
   };
   // Rate control's trial files: the main header, each tile-part's SOT and SOD, EOC and any JP2
   // boxes do not depend on the selection, so they are measured once with empty tile bodies, and a
@@ -347,7 +369,7 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
     cs::CodestreamWriter writer(header);
     for (const CodedTile& tile : tiles) writer.add_tile_part(static_cast<unsigned>(tile.tile.index), 0, 1, {});
     const std::vector<std::uint8_t> codestream = writer.finish();
-    return in_file(format, codestream, header.siz).size();
+    return in_file(format, codestream, header.siz, params).size();
   }();
   const FileSizer file_size = [&](const LayerPasses& trial) {
     std::size_t bytes = fixed_bytes;

@@ -35,6 +35,13 @@ enum class Layout {
   Planar,       // each component a plane of rows, planes one after another
 };
 
+// A JP2/JPH resolution (T.800 I.5.3.7, the capture and display resolution boxes): points per
+// metre of the reference grid, vertically and horizontally; both 0 where there is none.
+struct GridResolution {
+  double vertical = 0, horizontal = 0;
+  bool given() const { return vertical > 0 && horizontal > 0; }
+};
+
 enum class DwtDevice {
   Auto,  // a hardware GPU where it is faster for the image size, never a software renderer
   Cpu,

@@ -61,6 +61,9 @@ struct ImageInfo {
   int colour_space = 0;  // JP2/JPH: 16 sRGB, 17 greyscale, 18 sYCC (16 after conversion); 0: none given
   // JP2/JPH with a restricted ICC colour specification: the profile (samples are not converted).
   std::vector<std::uint8_t> icc_profile;
+  // JP2/JPH resolution box: capture (resc) and display (resd), on the decoded image's grid (the
+  // file's values divided by 2^reduce).
+  GridResolution capture_resolution, display_resolution;
   int width() const { return static_cast<int>(x1 - x0); }
   int height() const { return static_cast<int>(y1 - y0); }
 };
@@ -73,8 +76,9 @@ struct DecodedImage {
   std::int64_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
   std::vector<DecodedComponent> components;
   int colour_space = 0;
-  std::vector<std::uint8_t> icc_profile;  // as ImageInfo's
-  std::vector<std::string> warnings;      // what did not stop the decode (a truncated stream): one line each
+  std::vector<std::uint8_t> icc_profile;                  // as ImageInfo's
+  GridResolution capture_resolution, display_resolution;  // as ImageInfo's
+  std::vector<std::string> warnings;  // what did not stop the decode (a truncated stream): one line each
   int width() const { return static_cast<int>(x1 - x0); }
   int height() const { return static_cast<int>(y1 - y0); }
 };

@@ -79,6 +79,9 @@ struct EncodeOptions {
   CodeBlockModes modes;
   int guard_bits = -1;  // -1: 2 lossless, 1 lossy
   std::string comment = "Created by gpuj2k";
+  // JP2/JPH: a resolution box with the capture and/or display resolution, where given (j2kenc
+  // passes on the input file's resolution as the capture resolution).
+  GridResolution capture_resolution, display_resolution;
   int threads = 0;  // worker threads for this encode; 0: one per hardware thread
   // Shared worker threads and GL context (common.h); `threads` is then the engine's. Null: this
   // encode makes its own.
@@ -115,7 +118,9 @@ GPUJ2K_API std::vector<std::uint8_t> encode(const ImageView& image, const Encode
                                             EncodeReport* report = nullptr);
 
 // Encodes an image file: PNM (read without conversion), PFM is refused (float samples), anything
-// else through OpenImageIO (PNG, TIFF, BMP, JPEG, ...), keeping its precision.
+// else through OpenImageIO (PNG, TIFF, BMP, JPEG, ...), keeping its precision. A JP2/JPH file gets
+// the input file's resolution, where it records one, as its capture resolution (unless
+// `options.capture_resolution` is given).
 GPUJ2K_API std::vector<std::uint8_t> encode_file(const std::string& input_path, const EncodeOptions& options,
                                                  EncodeReport* report = nullptr);
 

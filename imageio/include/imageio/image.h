@@ -34,6 +34,10 @@ struct Image {
   // embed where the format can carry one (TIFF, PNG, JPEG); empty: none. PNM and PFM have no place
   // for one.
   std::vector<std::uint8_t> icc_profile;
+  // Pixels per metre across and down, as the file records them (TIFF, PNG, JPEG, BMP, through
+  // OpenImageIO's XResolution, YResolution and ResolutionUnit) or as a writer should; 0: none (a
+  // file that gives only an aspect ratio, or PNM).
+  double x_pixels_per_metre = 0, y_pixels_per_metre = 0;
 
   float& at(int x, int y, int c) { return pixels[index(x, y, c)]; }
   float at(int x, int y, int c) const { return pixels[index(x, y, c)]; }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "codec/dwt_choice/dwt_device.h"
+#include "codec/structure/grid_resolution.h"
 
 namespace dwt {
 class DwtBackend;
@@ -79,6 +80,9 @@ struct DecodedImage {
   // JP2 files with a restricted ICC colr box (METH 2): the profile, for the output file to carry;
   // the samples are not converted. Empty otherwise.
   std::vector<std::uint8_t> icc_profile;
+  // JP2 files with a resolution box: the capture (resc) and default display (resd) resolutions, on
+  // the decoded image's grid (the file's divided by 2^reduce).
+  GridResolution capture_resolution, display_resolution;
 };
 
 // Milliseconds spent in each stage of one decode, in data-flow order (the encoder's StageTimes,

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "codec/dwt_choice/dwt_device.h"  // DwtDevice
+#include "codec/structure/grid_resolution.h"
 #include "codec/t1/block_style.h"
 
 namespace codec {
@@ -55,6 +56,9 @@ struct EncodeParams {
   // predicted final slope threshold (README, "Pass skipping"). false codes every pass of every block.
   bool skip_passes = true;
   std::string comment = "Created by gpuj2k";
+  // JP2 and JPH files: a resolution box with these capture and display resolutions (points per
+  // metre of the reference grid), each where given. Codestreams have no place for them.
+  GridResolution capture_resolution, display_resolution;
   // Called as code-blocks finish tier-1, from any worker thread (the callee must be thread-safe):
   // blocks done so far and the image's total.
   std::function<void(std::size_t done, std::size_t total)> progress;
