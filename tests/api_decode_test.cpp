@@ -51,6 +51,28 @@ Encoded encode_lossless(int w, int h, int components, int bits, gpuj2k::Format f
   return e;
 }
 
+// An 8-bit RGB test image (the generator's mix pattern), and the view the encoder takes of it.
+struct Rgb8 {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> pixels;
+  gpuj2k::ImageView view() const {
+    gpuj2k::ImageView v;
+    v.data = pixels.data();
+    v.size_bytes = pixels.size();
+    v.width = width;
+    v.height = height;
+    v.components = 3;
+    return v;
+  }
+};
+
+Rgb8 rgb8_image(int w, int h) {
+  Rgb8 out{w, h, {}};
+  for (float v : testimages::generate(testimages::Pattern::Mix, w, h, 3, 8).pixels)
+    out.pixels.push_back(static_cast<std::uint8_t>(v));
+  return out;
+}
+
 std::string error_of(const std::vector<std::uint8_t>& bytes, const gpuj2k::OutputView& out,
                      const gpuj2k::DecodeOptions& options = {}) {
   try {
@@ -136,15 +158,8 @@ TEST(ApiDecode, IccProfileReachesTheCaller) {
 // them back (within the box's 16-bit fractions), on the grid --reduce leaves; a resolution the
 // box cannot hold is refused before coding.
 TEST(ApiDecode, ResolutionRoundTrips) {
-  const imageio::Image image = testimages::generate(testimages::Pattern::Mix, 16, 8, 3, 8);
-  std::vector<std::uint8_t> samples;
-  for (float v : image.pixels) samples.push_back(static_cast<std::uint8_t>(v));
-  gpuj2k::ImageView view;
-  view.data = samples.data();
-  view.size_bytes = samples.size();
-  view.width = 16;
-  view.height = 8;
-  view.components = 3;
+  const Rgb8 image = rgb8_image(16, 8);
+  const gpuj2k::ImageView view = image.view();
   gpuj2k::EncodeOptions options;
   options.lossless = true;
   options.format = gpuj2k::Format::Jp2;
@@ -284,15 +299,8 @@ TEST(ApiDecode, ConcurrentDecodesGiveTheSameSamples) {
 // The report mirrors EncodeReport: where the inverse DWT ran and why, the threads, and stage times
 // that are real (tier-1 and the DWT of a lossy stream take time; a CPU decode spends none on GL).
 TEST(ApiDecode, ReportNamesTheDwtAndTimesTheStages) {
-  const imageio::Image image = testimages::generate(testimages::Pattern::Mix, 96, 64, 3, 8);
-  std::vector<std::uint8_t> pixels;
-  for (float v : image.pixels) pixels.push_back(static_cast<std::uint8_t>(v));
-  gpuj2k::ImageView view;
-  view.data = pixels.data();
-  view.size_bytes = pixels.size();
-  view.width = 96;
-  view.height = 64;
-  view.components = 3;
+  const Rgb8 image = rgb8_image(96, 64);
+  const gpuj2k::ImageView view = image.view();
   gpuj2k::EncodeOptions lossy;
   lossy.dwt = gpuj2k::DwtDevice::Cpu;
   lossy.rates_bpp = {1.0};
