@@ -84,6 +84,13 @@ std::vector<double> parse_numbers(const std::string& list, const std::string& op
   return out;
 }
 
+// "X,Y" pixels per metre (horizontal, then vertical) as a resolution box holds them.
+gpuj2k::GridResolution parse_resolution(const std::string& pair, const std::string& option) {
+  const std::vector<double> v = parse_numbers(pair, option);
+  if (v.size() != 2) throw std::invalid_argument(option + " takes X,Y in pixels per metre, got \"" + pair + "\"");
+  return gpuj2k::GridResolution{v[1], v[0]};
+}
+
 // JasPer-style "-O key=value" options, mapped onto ours (JasPer's rate is a fraction of the
 // uncompressed size; numrlvls counts resolutions, one more than decomposition levels).
 struct JasperOptions {
@@ -240,6 +247,12 @@ int main(int argc, char** argv) {
                  "cblkheight, prg, ilyrrates");
   app.add_option("--guard-bits", guard_bits, "guard bits (default 2 lossless, 1 lossy)");
   app.add_option("--comment", comment, "COM marker text (default: the encoder's name)");
+  std::string capture_resolution, display_resolution;
+  app.add_option("--capture-resolution", capture_resolution,
+                 "JP2/JPH: capture resolution in pixels per metre, X,Y (as grk_compress -Q; default: the input "
+                 "file's, where it records one)");
+  app.add_option("--display-resolution", display_resolution,
+                 "JP2/JPH: display resolution in pixels per metre, X,Y (as grk_compress -D)");
   app.add_option("--threads", threads, "worker threads (default: all hardware threads)");
   bool every_pass = false;
   app.add_flag("--code-every-pass", every_pass,
@@ -302,6 +315,10 @@ int main(int argc, char** argv) {
     options.progression = parse_order(order);
     if (!modes.empty()) options.modes = parse_modes(modes);
     if (!comment.empty()) options.comment = comment;
+    if (!capture_resolution.empty())
+      options.capture_resolution = parse_resolution(capture_resolution, "--capture-resolution");
+    if (!display_resolution.empty())
+      options.display_resolution = parse_resolution(display_resolution, "--display-resolution");
     if (!tile.empty())
       std::tie(options.tile_width, options.tile_height) = cli::parse_pair(tile, 'x', "--tile", kMaxCoordinate);
     if (!tile_origin.empty())

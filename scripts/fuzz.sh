@@ -70,6 +70,7 @@ enc -o "$corpus/codestream/precincts.j2k" --lossless --precincts 8x8 --codeblock
 enc -o "$corpus/codestream/modes.j2k" --modes bypass,reset,termall,vcausal,pterm,segsym --codeblock 8x8 --levels 2
 enc -o "$corpus/codestream/layers.j2k" --rate 1,2,4 --order CPRL --levels 2
 enc -o "$corpus/codestream/file.jp2" --levels 1
+enc -o "$corpus/codestream/resolution.jp2" --levels 1 --capture-resolution 3780,2000 --display-resolution 2835,2835
 # HTJ2K (T.814): lossless and lossy HT code-blocks, small blocks in precincts, and a JPH file.
 enc -o "$corpus/codestream/ht_lossless.j2k" --ht --lossless --levels 2
 enc -o "$corpus/codestream/ht_lossy.j2k" --ht --rate 8 --levels 2

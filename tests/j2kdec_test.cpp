@@ -322,6 +322,14 @@ TEST_F(J2kdecCli, ResolutionReachesTheOutput) {
   const imageio::Image again = decoded(scratch / "again.jp2", "again.png");
   EXPECT_NEAR(again.x_pixels_per_metre, 3780, 1.0);
   EXPECT_NEAR(again.y_pixels_per_metre, 2000, 1.0);
+  // Or as asked on the command line, X,Y as grk_compress -D takes them; a malformed pair is refused.
+  ASSERT_EQ(run(encode + " --display-resolution 5000,7200", scratch.path()).exit_code, 0);
+  const imageio::Image asked = decoded(scratch / "again.jp2", "asked.png");
+  EXPECT_NEAR(asked.x_pixels_per_metre, 5000, 1.0);
+  EXPECT_NEAR(asked.y_pixels_per_metre, 7200, 1.0);
+  const ProcessResult bad = run(encode + " --capture-resolution 72", scratch.path());
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("--capture-resolution takes X,Y in pixels per metre"), std::string::npos) << bad.err;
 
   if (!test_support::have_tool("grk_decompress") || !test_support::have_tool("grk_compress"))
     GTEST_SKIP() << "grk_decompress or grk_compress not installed: the cross-check with Grok was not run";

@@ -139,7 +139,8 @@ GridResolution read_resolution(ByteReader in, const char* box) {
   return GridResolution{vn / vd * std::pow(10.0, ve), hn / hd * std::pow(10.0, he)};
 }
 
-// The resolution superbox (I.5.3.7): a capture and/or a display resolution box, each at most once.
+// The resolution superbox (I.5.3.7): a capture and/or a display resolution box (a repeated one
+// replaces the first).
 void read_res(ByteReader inner, Jp2File& f) {
   while (!inner.at_end()) {
     const Box sub = next_box(inner);
