@@ -271,11 +271,9 @@ std::vector<std::uint8_t> encode_file(const std::string& input_path, const Encod
     base_params(options);  // option errors should not wait for a large image to be read
     const auto start = Clock::now();
     SourceFile file = read_source(input_path);
-    if (options.capture_resolution.given() || !file.resolution.given())
-      return encode_source(std::move(file.image), options, ms_since(start), report);
-    EncodeOptions with_resolution = options;  // the file's resolution, for a JP2/JPH resolution box
-    with_resolution.capture_resolution = file.resolution;
-    return encode_source(std::move(file.image), with_resolution, ms_since(start), report);
+    EncodeOptions o = options;
+    if (!o.capture_resolution.given()) o.capture_resolution = file.resolution;  // for a JP2/JPH resolution box
+    return encode_source(std::move(file.image), o, ms_since(start), report);
   });
 }
 

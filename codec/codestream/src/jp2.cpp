@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "codec/codestream/byte_writer.h"
@@ -101,6 +102,13 @@ void write_cdef(ByteWriter& out, const Jp2Header& h) {
   end_box(out, box);
 }
 
+// A number as a message shows it: 6 significant digits ("1e+200", not 201 of them).
+std::string shortest(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
 // The resolution superbox (I.5.3.7): capture then display, each VR N, D, HR N, D, VR E, HR E.
 void write_res(ByteWriter& out, const Jp2Header& h) {
   const std::size_t res = begin_box(out, fourcc("res "));
@@ -125,7 +133,7 @@ void write_res(ByteWriter& out, const Jp2Header& h) {
 Jp2ResolutionFraction resolution_fraction(double points_per_metre) {
   if (!(points_per_metre > 0) || !std::isfinite(points_per_metre))
     throw CodestreamError("JP2: a resolution must be a positive number of grid points per metre, not " +
-                          std::to_string(points_per_metre));
+                          shortest(points_per_metre));
   constexpr double kMax = 65535 * (1 + 1e-12);  // with room for the divisions' rounding
   // The smallest exponent from 0 up that leaves the value at most 65535, then the denominator
   // carries its fraction; a negative exponent only below one point per metre. (Negative exponents
@@ -135,7 +143,7 @@ Jp2ResolutionFraction resolution_fraction(double points_per_metre) {
   while (points_per_metre / std::pow(10.0, exponent) > kMax) ++exponent;
   while (exponent > -128 && points_per_metre / std::pow(10.0, exponent) < 1) --exponent;
   if (exponent > 127)
-    throw CodestreamError("JP2: a resolution of " + std::to_string(points_per_metre) +
+    throw CodestreamError("JP2: a resolution of " + shortest(points_per_metre) +
                           " points per metre is more than the box holds (65535e127)");
   const double value = points_per_metre / std::pow(10.0, exponent);
   // Convergents p/q of the continued fraction of `value` while both fit in 16 bits: each is the

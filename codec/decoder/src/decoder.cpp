@@ -108,6 +108,14 @@ GridResolution reduced_resolution(const GridResolution& r, int reduce) {
   return GridResolution{r.vertical * scale, r.horizontal * scale};
 }
 
+// What a JP2 file's header says about the decoded image beyond its samples: the ICC profile and
+// the resolutions (the colour space is set where the channels are made).
+void take_jp2_metadata(const dec::Jp2File& jp2, int reduce, DecodedImage& image) {
+  image.icc_profile = jp2.icc_profile;
+  image.capture_resolution = reduced_resolution(jp2.capture_resolution, reduce);
+  image.display_resolution = reduced_resolution(jp2.display_resolution, reduce);
+}
+
 bool rewrites_channels(const dec::Jp2File& jp2) {
   return !jp2.channel_sources.empty() || !jp2.channel_definitions.empty() || jp2.colour_space == 18;
 }
@@ -212,9 +220,7 @@ DecodedImage read_header(std::span<const std::uint8_t> bytes, const DecodeOption
   if (!options.components.empty()) select_in_order(image, options);
   if (opened.jp2) {
     image.jp2_colour_space = opened.jp2->colour_space;
-    image.icc_profile = opened.jp2->icc_profile;
-    image.capture_resolution = reduced_resolution(opened.jp2->capture_resolution, options.reduce);
-    image.display_resolution = reduced_resolution(opened.jp2->display_resolution, options.reduce);
+    take_jp2_metadata(*opened.jp2, options.reduce, image);
   }
   image.warnings = opened.cs.warnings;
   return image;
@@ -277,11 +283,7 @@ DecodedImage decode_with(std::span<const std::uint8_t> bytes, const DecodeOption
   const bool rows_to_sink = sink && options.components.empty() && !(jp2 && rewrites_channels(*jp2));
   DecodedImage image = allocate_image(cs.siz, window, selected, options, !rows_to_sink);
   image.warnings = cs.warnings;
-  if (jp2) {
-    image.icc_profile = jp2->icc_profile;
-    image.capture_resolution = reduced_resolution(jp2->capture_resolution, options.reduce);
-    image.display_resolution = reduced_resolution(jp2->display_resolution, options.reduce);
-  }
+  if (jp2) take_jp2_metadata(*jp2, options.reduce, image);
   if (rows_to_sink) {
     if (jp2) image.jp2_colour_space = jp2->colour_space;
     sink->begin(image);

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "codec/codestream/codestream_writer.h"
+#include "codec/codestream/error.h"
 #include "codec/codestream/jp2.h"
 #include "codec/codestream/main_header.h"
 #include "ht_rate.h"
@@ -270,15 +271,16 @@ std::size_t tile_packets_length(const CodedTile& coded, const EncodeParams& para
   return total;
 }
 
-// A resolution for a JP2 resolution box: none (both 0), or both positive and within what the
-// box holds (65535 * 10^127 points per metre), refused before any coding.
+// A resolution for a JP2 resolution box: none (both 0), or two values the box can hold, refused
+// before any coding by the rule the box writer applies (cs::resolution_fraction).
 void check_resolution(const GridResolution& r, const char* which) {
   if (r.vertical == 0 && r.horizontal == 0) return;
-  const auto fits = [](double v) { return v > 0 && v <= 65535e127; };
-  if (!fits(r.vertical) || !fits(r.horizontal))
-    throw std::invalid_argument(std::string("the ") + which + " resolution must be two positive numbers of points " +
-                                "per metre (at most 6.5535e131), not " + std::to_string(r.vertical) +
-                                " vertically and " + std::to_string(r.horizontal) + " horizontally");
+  try {
+    cs::resolution_fraction(r.vertical);
+    cs::resolution_fraction(r.horizontal);
+  } catch (const cs::CodestreamError& e) {
+    throw std::invalid_argument(std::string("the ") + which + " resolution: " + e.what());
+  }
 }
 
 // The JP2/JPH header boxes' description of the image: SIZ's, with the resolutions asked for.
