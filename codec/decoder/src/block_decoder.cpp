@@ -41,12 +41,14 @@ const t1::ZeroCodingTable& zero_coding_table(BandOrientation o) {
 }
 
 // Where a pass's decisions come from: the MQ decoder with their contexts, or raw bits (D.6). The
-// pass logic is written once over these two.
+// pass logic is written once over these two. even_decision is for the passes whose decisions are
+// least skewed, significance propagation and refinement (MqDecoder::decode_even says why).
 struct MqSymbols {
   MqDecoder& mq;
   Contexts& cx;
 
   int decision(int context) { return mq.decode(cx[static_cast<std::size_t>(context)]); }
+  int even_decision(int context) { return mq.decode_even(cx[static_cast<std::size_t>(context)]); }
   // Table D.3 through t1::kSignTable: the decoded bit is the sign XOR the prediction.
   unsigned sign(unsigned sign_index) {
     const std::uint8_t entry = t1::kSignTable[sign_index];
@@ -58,6 +60,7 @@ struct RawSymbols {
   RawDecoder& raw;
 
   int decision(int /*context*/) { return raw.bit(); }
+  int even_decision(int /*context*/) { return raw.bit(); }
   unsigned sign(unsigned /*sign_index*/) { return static_cast<unsigned>(raw.bit()); }  // D.6: as is
 };
 
@@ -155,7 +158,7 @@ class BlockDecoder {
     const std::uint32_t around = *w >> (3 * r);  // reloaded: the row above may have changed it
     if ((around & column::kCentre) || !(around & column::kNeighbours)) return;
     *w |= column::visited(r);
-    if (s.decision(zc_[around & column::kNeighbourhood]))
+    if (s.even_decision(zc_[around & column::kNeighbourhood]))
       become_significant(w, r, column_top + r * w_, s.sign(column::sign_index(w, r)), plane);
   }
 
@@ -198,7 +201,7 @@ class BlockDecoder {
   template <class Symbols>
   [[gnu::always_inline]] static void refine_row(std::uint32_t word, int r, std::int32_t* column_top, std::int32_t half,
                                                 Symbols& s, int width) {
-    const int bit = s.decision(t1::refinement_context(word, r));
+    const int bit = s.even_decision(t1::refinement_context(word, r));
     // The interval halves: its middle moves up or down by a quarter of the old width.
     std::int32_t& v = column_top[r * width];
     const std::int32_t step = bit ? half : -half;
