@@ -7,6 +7,7 @@
 #include "codec/decoder/decoder.h"
 #include "codec/t1/stripe_columns.h"
 #include "mq_decoder.h"
+#include "simd_dispatch/scalar_clones.h"
 
 namespace codec::dec {
 
@@ -130,13 +131,15 @@ class BlockDecoder {
 
  private:
   // The MQ passes decode with a local copy of the decoder (written back after) that the compiler
-  // keeps in registers; `flatten` inlines everything into the pass for that to work.
-  [[gnu::flatten]] void significance_pass_mq(int plane) {
+  // keeps in registers; `flatten` inlines everything into the pass for that to work. Each is also
+  // built for x86-64-v3 (simd_dispatch/scalar_clones.h): a lossless 2048x2048 decode on 1 thread of
+  // an AMD EPYC took 8-10 % less time (2026-11-28).
+  [[gnu::flatten, GPUJ2K_X86_64_V3_CLONES]] void significance_pass_mq(int plane) {
     MqDecoder mq = mq_;
     significance_pass(plane, MqSymbols{mq, cx_});
     mq_ = mq;
   }
-  [[gnu::flatten]] void refinement_pass_mq(int plane) {
+  [[gnu::flatten, GPUJ2K_X86_64_V3_CLONES]] void refinement_pass_mq(int plane) {
     MqDecoder mq = mq_;
     refinement_pass(plane, MqSymbols{mq, cx_});
     mq_ = mq;
@@ -290,7 +293,7 @@ class BlockDecoder {
 
   // D.3.4: everything the significance pass left, with run-length decoding of quiet stripe
   // columns; then the segmentation symbol of D.5.
-  [[gnu::flatten]] void cleanup_pass(int plane) {
+  [[gnu::flatten, GPUJ2K_X86_64_V3_CLONES]] void cleanup_pass(int plane) {
     MqDecoder mq = mq_;
     MqSymbols s{mq, cx_};
     for (int y0 = 0; y0 < h_; y0 += 4) {

@@ -1,6 +1,5 @@
 #pragma once
 #include <array>
-#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -60,7 +59,7 @@ class MqDecoder {
     const Step s = step(cx);
     if (a_ & 0x8000) return static_cast<int>(s.mps);
     cx = kMqDecoderNext[cx & 0xFFu][s.exchanged ^ 1u];  // [0] after an LPS, [1] after an MPS
-    renormalise(std::countl_zero(a_) - 16);
+    renormalise(renormalisation_shift());
     return static_cast<int>(s.mps ^ s.exchanged);
   }
 
@@ -73,7 +72,7 @@ class MqDecoder {
   int decode_even(MqDecoderContext& cx) {
     const MqDecoderContext packed = cx;
     const Step s = step(cx);
-    const int shift = std::countl_zero(a_) - 16;
+    const int shift = renormalisation_shift();
     const MqDecoderContext next = kMqDecoderNext[packed & 0xFFu][s.exchanged ^ 1u];
     cx = shift != 0 ? next : packed;
     renormalise(shift);
@@ -97,6 +96,11 @@ class MqDecoder {
     a_ = lower ? qe : a;
     return Step{packed & 1u, static_cast<unsigned>(lower) ^ static_cast<unsigned>(smaller)};
   }
+
+  // The shift that brings A back to at least 0x8000 (0 if it is): A is never 0 (every Qe is
+  // nonzero), so the builtin needs no test for 0, where std::countl_zero has one on a machine
+  // without LZCNT (the baseline x86-64 this builds for): some 3 % of a decode's instructions.
+  int renormalisation_shift() const { return __builtin_clz(a_) - 16; }
 
   std::uint8_t byte_at(std::size_t i) const { return i < size_ ? data_[i] : 0xFF; }
 

@@ -1,0 +1,15 @@
+#pragma once
+// Run-time dispatch for scalar code, beside Highway's for vector code: GPUJ2K_X86_64_V3_CLONES in a
+// function's attribute list, [[gnu::flatten, GPUJ2K_X86_64_V3_CLONES]], has GCC build the function
+// twice, for the baseline x86-64 and for x86-64-v3, and pick one when the program is loaded
+// (target_clones, an ifunc). It pays in branchy bit-twiddling code (the block coders' passes):
+// BMI2's shifts by a register need no flags, LZCNT counts leading zeros without a test for 0, ANDN
+// saves a move. Only the function itself and what is inlined into it are built for x86-64-v3: a
+// function it calls stays built for the baseline, so no code that other callers share can need
+// an instruction the processor lacks. `flatten` beside it inlines its callees into each clone.
+// Elsewhere (Clang, other architectures) it is empty and the function is built once.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define GPUJ2K_X86_64_V3_CLONES gnu::target_clones("arch=x86-64-v3", "default")
+#else
+#define GPUJ2K_X86_64_V3_CLONES
+#endif
