@@ -18,7 +18,8 @@ namespace codec {
 // other block then gets its cleanups' distortions exactly and their lengths estimated from
 // counts of significant quads and magnitude bits (ht::plane_statistics, scaled by what the
 // sample's cleanups really took), and only the cleanups from the plane that estimate picks at
-// the threshold and the planes on either side are coded. After the allocation, blocks whose
+// the threshold, the plane above it and, where the estimate comes near taking it, the plane below
+// are coded. After the allocation, blocks whose
 // choice lies at the edge of what was coded get the next planes coded (ht_blocks_at_edges) and
 // the allocation is redone.
 
