@@ -1,3 +1,4 @@
+#include "simd_dispatch/scalar_clones.h"
 #include "coding_passes.h"
 
 #include <algorithm>
@@ -162,10 +163,13 @@ inline int first_one_in_column(const BlockView& v, std::ptrdiff_t i, int plane) 
 
 // The arithmetic-coded passes work on a local copy of the coder (and of the view) that the
 // compiler can keep in registers for the whole pass (see MqEncoder::byte_out). `flatten` makes
-// sure everything is inlined early enough for that to happen.
+// sure everything is inlined early enough for that to happen. Each is also built for x86-64-v3
+// (simd_dispatch/scalar_clones.h): 2.5 % fewer instructions in a lossless 1024x1024 encode, and a
+// 2048x2048 one on 2 threads of an AMD EPYC 5-7 % faster (2026-11-28); the same codewords.
 template <bool kMeasure>
-[[gnu::flatten]] double significance_pass(const BlockView& v, int plane, const ZeroCodingTable& zc, ContextSet& cx,
-                                          MqEncoder& mq) {
+[[gnu::flatten, GPUJ2K_X86_64_V3_CLONES]] double significance_pass(const BlockView& v, int plane,
+                                                                   const ZeroCodingTable& zc, ContextSet& cx,
+                                                                   MqEncoder& mq) {
   MqEncoder coder = mq;
   const double gain = significance_pass_impl<kMeasure>(BlockView(v), plane, zc, MqSymbols{coder, cx});
   mq = coder;
@@ -178,7 +182,8 @@ double significance_pass_raw(const BlockView& v, int plane, RawWriter& raw) {
 }
 
 template <bool kMeasure>
-[[gnu::flatten]] double refinement_pass(const BlockView& v, int plane, ContextSet& cx, MqEncoder& mq) {
+[[gnu::flatten, GPUJ2K_X86_64_V3_CLONES]] double refinement_pass(const BlockView& v, int plane, ContextSet& cx,
+                                                                 MqEncoder& mq) {
   MqEncoder coder = mq;
   const double gain = refinement_pass_impl<kMeasure>(BlockView(v), plane, MqSymbols{coder, cx});
   mq = coder;
@@ -192,8 +197,9 @@ double refinement_pass_raw(const BlockView& v, int plane, RawWriter& raw) {
 
 // D.3.4: everything the significance pass left, with run-length coding of quiet stripe columns.
 template <bool kMeasure>
-[[gnu::flatten]] double cleanup_pass(const BlockView& view, int plane, const ZeroCodingTable& zc, ContextSet& cx,
-                                     MqEncoder& coder) {
+[[gnu::flatten, GPUJ2K_X86_64_V3_CLONES]] double cleanup_pass(const BlockView& view, int plane,
+                                                              const ZeroCodingTable& zc, ContextSet& cx,
+                                                              MqEncoder& coder) {
   const BlockView v = view;
   MqEncoder mq = coder;
   MqSymbols s{mq, cx};
