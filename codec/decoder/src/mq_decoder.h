@@ -58,7 +58,7 @@ class MqDecoder {
   int decode(MqDecoderContext& cx) {
     const Step s = step(cx);
     if (a_ & 0x8000) return static_cast<int>(s.mps);
-    cx = kMqDecoderNext[cx & 0xFFu][s.exchanged ^ 1u];  // [0] after an LPS, [1] after an MPS
+    cx = successor(cx, s);
     renormalise(renormalisation_shift());
     return static_cast<int>(s.mps ^ s.exchanged);
   }
@@ -73,7 +73,7 @@ class MqDecoder {
     const MqDecoderContext packed = cx;
     const Step s = step(cx);
     const int shift = renormalisation_shift();
-    const MqDecoderContext next = kMqDecoderNext[packed & 0xFFu][s.exchanged ^ 1u];
+    const MqDecoderContext next = successor(packed, s);
     cx = shift != 0 ? next : packed;
     renormalise(shift);
     return static_cast<int>(s.mps ^ s.exchanged);
@@ -95,6 +95,12 @@ class MqDecoder {
     c_ = lower ? c_ : c_ - qe_high;
     a_ = lower ? qe : a;
     return Step{packed & 1u, static_cast<unsigned>(lower) ^ static_cast<unsigned>(smaller)};
+  }
+
+  // The context's state after a decision that renormalises: kMqDecoderNext's [0] after an LPS, [1]
+  // after an MPS.
+  static MqDecoderContext successor(MqDecoderContext packed, Step s) {
+    return kMqDecoderNext[packed & 0xFFu][s.exchanged ^ 1u];
   }
 
   // The shift that brings A back to at least 0x8000 (0 if it is): A is never 0 (every Qe is

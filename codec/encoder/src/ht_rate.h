@@ -19,9 +19,8 @@ namespace codec {
 // counts of significant quads and magnitude bits (ht::plane_statistics, scaled by what the
 // sample's cleanups really took), and only the cleanups from the plane that estimate picks at
 // the threshold, the plane above it and, where the estimate comes near taking it, the plane below
-// are coded. After the allocation, blocks whose
-// choice lies at the edge of what was coded get the next planes coded (ht_blocks_at_edges) and
-// the allocation is redone.
+// are coded. After the allocation, blocks whose choice lies at the edge of what was coded get the
+// next planes coded (ht_blocks_at_edges) and the allocation is redone.
 
 // Tier-1 of a tile's HT blocks under a target: fills coded.ht_candidates, and coded.blocks with
 // their truncation points. With no target to predict from (or few blocks) every block gets every

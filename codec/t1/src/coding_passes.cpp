@@ -1,4 +1,3 @@
-#include "simd_dispatch/scalar_clones.h"
 #include "coding_passes.h"
 
 #include <algorithm>
@@ -7,6 +6,7 @@
 #include "column_masks_simd.h"
 #include "distortion.h"
 #include "codec/t1/stripe_columns.h"
+#include "simd_dispatch/scalar_clones.h"
 
 namespace codec::t1 {
 
