@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <random>
 
 #include "dwt/error.h"
 #include "dwt/params.h"
@@ -140,6 +142,49 @@ TEST(DwtCpu, Reversible53RoundTripsSixteenBitSignedData) {
     backend().inverse(dwt::make_span(plane.data(), s.w, s.h), p);
     ASSERT_EQ(plane, input);
   }
+}
+
+// Samples of up to 38 bits (T.800's most) on int64 planes: the 5/3 against the exact T.800 model
+// (long is 64 bits here) on data an int32 plane would overflow, and back exactly.
+TEST(DwtCpu, Reversible53OnInt64PlanesIsExactForThirtyEightBitSamples) {
+  static_assert(sizeof(long) == 8);
+  std::mt19937_64 rng(38);
+  for (Shape s : {Shape{1, 1}, Shape{1, 9}, Shape{17, 1}, Shape{33, 20}, Shape{130, 67}})
+    for (dwt::Origin o : testmatrix::origins()) {
+      std::vector<std::int64_t> input(static_cast<std::size_t>(s.w * s.h));
+      for (auto& v : input) v = static_cast<std::int64_t>(rng() >> 26) - (std::int64_t{1} << 37);  // signed 38 bits
+      const int levels = dwt::max_levels(s.w, s.h, o);
+      auto plane = input;
+      const dwt::DwtParams p{dwt::KernelId::Reversible53, dwt::Boundary::Symmetric, levels, o};
+      backend().forward(dwt::make_span(plane.data(), s.w, s.h), p);
+      const auto exact = rev53_reference(std::vector<long>(input.begin(), input.end()), s, o, levels);
+      const std::string what = testmatrix::describe("53 int64", p.boundary, s, o, levels);
+      for (std::size_t i = 0; i < plane.size(); ++i) ASSERT_EQ(plane[i], exact[i]) << what << " at " << i;
+      backend().inverse(dwt::make_span(plane.data(), s.w, s.h), p);
+      ASSERT_EQ(plane, input) << what;
+    }
+}
+
+// The float kernels on double planes: the float64 reference to rounding, and 38-bit samples
+// reconstructed to well under half a unit, which float planes (24-bit mantissas) cannot do.
+TEST(DwtCpu, FloatKernelsOnDoublePlanesKeepThirtyEightBitSamples) {
+  std::mt19937_64 rng(97);
+  for (Shape s : {Shape{1, 1}, Shape{2, 7}, Shape{33, 20}, Shape{130, 67}})
+    for (dwt::Origin o : testmatrix::origins()) {
+      std::vector<double> input(static_cast<std::size_t>(s.w * s.h));
+      for (auto& v : input) v = static_cast<double>(static_cast<std::int64_t>(rng() >> 26) - (std::int64_t{1} << 37));
+      const int levels = dwt::max_levels(s.w, s.h, o);
+      const dwt::DwtParams p{dwt::KernelId::Irreversible97, dwt::Boundary::Symmetric, levels, o};
+      const std::string what = testmatrix::describe("97 double", p.boundary, s, o, levels);
+      auto plane = input;
+      backend().forward(dwt::make_span(plane.data(), s.w, s.h), p);
+      ref::Plane r{s.w, s.h, input};
+      ref::transform(r, o.x, o.y, levels, ref::Filter::F97, ref::Ext::Sym, false);
+      for (std::size_t i = 0; i < plane.size(); ++i)
+        ASSERT_NEAR(plane[i], r.v[i], 1e-9 * std::ldexp(1.0, 38) * (levels + 1)) << what << " at " << i;
+      backend().inverse(dwt::make_span(plane.data(), s.w, s.h), p);
+      for (std::size_t i = 0; i < plane.size(); ++i) ASSERT_NEAR(plane[i], input[i], 0.01) << what << " at " << i;
+    }
 }
 
 TEST(DwtCpu, StridedPlanesOnlyTouchTheirOwnSamples) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "lifting_simd.h"
+#include "lifting_wide.h"
 #include "row_lifting.h"
 #include "strip_lifting.h"
 
@@ -308,5 +309,9 @@ template void run_forward<float>(const AxisPass&, dwt::PlaneSpan<float>, base::T
 template void run_inverse<float>(const AxisPass&, dwt::PlaneSpan<float>, base::ThreadPool&);
 template void run_forward<std::int32_t>(const AxisPass&, dwt::PlaneSpan<std::int32_t>, base::ThreadPool&);
 template void run_inverse<std::int32_t>(const AxisPass&, dwt::PlaneSpan<std::int32_t>, base::ThreadPool&);
+template void run_forward<double>(const AxisPass&, dwt::PlaneSpan<double>, base::ThreadPool&);
+template void run_inverse<double>(const AxisPass&, dwt::PlaneSpan<double>, base::ThreadPool&);
+template void run_forward<std::int64_t>(const AxisPass&, dwt::PlaneSpan<std::int64_t>, base::ThreadPool&);
+template void run_inverse<std::int64_t>(const AxisPass&, dwt::PlaneSpan<std::int64_t>, base::ThreadPool&);
 
 }  // namespace dwt_cpu

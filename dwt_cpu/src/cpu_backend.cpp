@@ -57,4 +57,15 @@ void CpuBackend::inverse(dwt::PlaneSpan<std::int32_t> plane, const dwt::DwtParam
   transform(plane, params, true);
 }
 
+void CpuBackend::forward(dwt::PlaneSpan<double> plane, const dwt::DwtParams& params) {
+  transform(plane, params, false);
+}
+void CpuBackend::inverse(dwt::PlaneSpan<double> plane, const dwt::DwtParams& params) { transform(plane, params, true); }
+void CpuBackend::forward(dwt::PlaneSpan<std::int64_t> plane, const dwt::DwtParams& params) {
+  transform(plane, params, false);
+}
+void CpuBackend::inverse(dwt::PlaneSpan<std::int64_t> plane, const dwt::DwtParams& params) {
+  transform(plane, params, true);
+}
+
 }  // namespace dwt_cpu

@@ -4,6 +4,7 @@
 #include "dwt/error.h"
 #include "kernel_checks.h"
 #include "lifting_simd.h"
+#include "lifting_wide.h"
 
 namespace dwt_cpu {
 namespace {
@@ -45,17 +46,19 @@ void for_step(const SplitSignal<T>& s, int target_class, auto op) {
   op(target, other, other + 1, static_cast<std::size_t>(r.count));
 }
 
-void lift_float(const dwt::Kernel& k, const SplitSignal<float>& s, bool inverse, bool gains = true) {
+// The float kernels on float or double signals.
+template <class T>
+void lift_real(const dwt::Kernel& k, const SplitSignal<T>& s, bool inverse, bool gains = true) {
   if (inverse) {
-    simd::scale(s.low, static_cast<float>(1.0 / k.low_gain), static_cast<std::size_t>(s.low_size));
-    simd::scale(s.high, static_cast<float>(1.0 / k.high_gain), static_cast<std::size_t>(s.high_size));
+    simd::scale(s.low, static_cast<T>(1.0 / k.low_gain), static_cast<std::size_t>(s.low_size));
+    simd::scale(s.high, static_cast<T>(1.0 / k.high_gain), static_cast<std::size_t>(s.high_size));
   }
   const int n = static_cast<int>(k.steps.size());
   for (int i = 0; i < n; ++i) {
     const dwt::LiftingStep& step = k.steps[static_cast<std::size_t>(inverse ? n - 1 - i : i)];
-    const auto cl = static_cast<float>(inverse ? -step.left : step.left);
-    const auto cr = static_cast<float>(inverse ? -step.right : step.right);
-    for_step(s, static_cast<int>(step.target), [&](float* t, const float* l, const float* r, std::size_t count) {
+    const auto cl = static_cast<T>(inverse ? -step.left : step.left);
+    const auto cr = static_cast<T>(inverse ? -step.right : step.right);
+    for_step(s, static_cast<int>(step.target), [&](T* t, const T* l, const T* r, std::size_t count) {
       if (cl == cr)
         simd::lift_symmetric(t, l, r, cl, count);
       else
@@ -63,29 +66,41 @@ void lift_float(const dwt::Kernel& k, const SplitSignal<float>& s, bool inverse,
     });
   }
   if (!inverse && gains) {
-    simd::scale(s.low, static_cast<float>(k.low_gain), static_cast<std::size_t>(s.low_size));
-    simd::scale(s.high, static_cast<float>(k.high_gain), static_cast<std::size_t>(s.high_size));
+    simd::scale(s.low, static_cast<T>(k.low_gain), static_cast<std::size_t>(s.low_size));
+    simd::scale(s.high, static_cast<T>(k.high_gain), static_cast<std::size_t>(s.high_size));
   }
 }
 
 }  // namespace
 
-void lift_forward(const dwt::Kernel& k, const SplitSignal<float>& s) { lift_float(k, s, false); }
-void lift_forward_steps(const dwt::Kernel& k, const SplitSignal<float>& s) { lift_float(k, s, false, false); }
-void lift_inverse(const dwt::Kernel& k, const SplitSignal<float>& s) { lift_float(k, s, true); }
+void lift_forward(const dwt::Kernel& k, const SplitSignal<float>& s) { lift_real(k, s, false); }
+void lift_forward_steps(const dwt::Kernel& k, const SplitSignal<float>& s) { lift_real(k, s, false, false); }
+void lift_inverse(const dwt::Kernel& k, const SplitSignal<float>& s) { lift_real(k, s, true); }
+void lift_forward(const dwt::Kernel& k, const SplitSignal<double>& s) { lift_real(k, s, false); }
+void lift_forward_steps(const dwt::Kernel& k, const SplitSignal<double>& s) { lift_real(k, s, false, false); }
+void lift_inverse(const dwt::Kernel& k, const SplitSignal<double>& s) { lift_real(k, s, true); }
 
-void lift_forward(const dwt::Kernel& k, const SplitSignal<std::int32_t>& s) {
+namespace {
+
+template <class I>
+void lift_integer(const dwt::Kernel& k, const SplitSignal<I>& s, bool inverse) {
   require_reversible(k);
-  using I = std::int32_t;
-  for_step(s, 1, [](I* t, const I* l, const I* r, std::size_t n) { simd::predict53(t, l, r, n, false); });
-  for_step(s, 0, [](I* t, const I* l, const I* r, std::size_t n) { simd::update53(t, l, r, n, false); });
+  auto predict = [inverse](I* t, const I* l, const I* r, std::size_t n) { simd::predict53(t, l, r, n, inverse); };
+  auto update = [inverse](I* t, const I* l, const I* r, std::size_t n) { simd::update53(t, l, r, n, inverse); };
+  if (inverse) {
+    for_step(s, 0, update);
+    for_step(s, 1, predict);
+  } else {
+    for_step(s, 1, predict);
+    for_step(s, 0, update);
+  }
 }
 
-void lift_inverse(const dwt::Kernel& k, const SplitSignal<std::int32_t>& s) {
-  require_reversible(k);
-  using I = std::int32_t;
-  for_step(s, 0, [](I* t, const I* l, const I* r, std::size_t n) { simd::update53(t, l, r, n, true); });
-  for_step(s, 1, [](I* t, const I* l, const I* r, std::size_t n) { simd::predict53(t, l, r, n, true); });
-}
+}  // namespace
+
+void lift_forward(const dwt::Kernel& k, const SplitSignal<std::int32_t>& s) { lift_integer(k, s, false); }
+void lift_inverse(const dwt::Kernel& k, const SplitSignal<std::int32_t>& s) { lift_integer(k, s, true); }
+void lift_forward(const dwt::Kernel& k, const SplitSignal<std::int64_t>& s) { lift_integer(k, s, false); }
+void lift_inverse(const dwt::Kernel& k, const SplitSignal<std::int64_t>& s) { lift_integer(k, s, true); }
 
 }  // namespace dwt_cpu

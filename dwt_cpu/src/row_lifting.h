@@ -26,5 +26,11 @@ void lift_forward_steps(const dwt::Kernel& kernel, const SplitSignal<float>& s);
 void lift_inverse(const dwt::Kernel& kernel, const SplitSignal<float>& s);
 void lift_forward(const dwt::Kernel& kernel, const SplitSignal<std::int32_t>& s);
 void lift_inverse(const dwt::Kernel& kernel, const SplitSignal<std::int32_t>& s);
+// The same on 64-bit lanes (lifting_wide.h), for samples of more than 31 bits.
+void lift_forward(const dwt::Kernel& kernel, const SplitSignal<double>& s);
+void lift_forward_steps(const dwt::Kernel& kernel, const SplitSignal<double>& s);
+void lift_inverse(const dwt::Kernel& kernel, const SplitSignal<double>& s);
+void lift_forward(const dwt::Kernel& kernel, const SplitSignal<std::int64_t>& s);
+void lift_inverse(const dwt::Kernel& kernel, const SplitSignal<std::int64_t>& s);
 
 }  // namespace dwt_cpu

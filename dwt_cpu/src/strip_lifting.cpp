@@ -7,6 +7,7 @@
 #include "dwt/error.h"
 #include "kernel_checks.h"
 #include "lifting_simd.h"
+#include "lifting_wide.h"
 
 namespace dwt_cpu {
 namespace {
@@ -52,7 +53,7 @@ void StreamingLift<T>::apply(const Step& step, int end) const {
     else
       simd::update53_lines(s.data, s.stride, s.lanes, step.next, end, inverse_);
   } else {
-    const auto cl = static_cast<float>(step.left), cr = static_cast<float>(step.right);
+    const auto cl = static_cast<T>(step.left), cr = static_cast<T>(step.right);
     if (cl == cr)
       simd::lift_lines_symmetric(s.data, s.stride, s.lanes, step.next, end, cl);
     else
@@ -77,5 +78,7 @@ int StreamingLift<T>::advance(int available) {
 
 template class StreamingLift<float>;
 template class StreamingLift<std::int32_t>;
+template class StreamingLift<double>;
+template class StreamingLift<std::int64_t>;
 
 }  // namespace dwt_cpu

@@ -24,6 +24,13 @@ class CpuBackend final : public dwt::DwtBackend {
   void inverse(dwt::PlaneSpan<float> plane, const dwt::DwtParams& params) override;
   void forward(dwt::PlaneSpan<std::int32_t> plane, const dwt::DwtParams& params) override;
   void inverse(dwt::PlaneSpan<std::int32_t> plane, const dwt::DwtParams& params) override;
+  // The same transforms on 64-bit planes, for samples of more than 31 bits (T.800 allows 38, and
+  // the transform adds bits): the reversible 5/3 exact on int64, the float kernels in double.
+  // Not through DwtBackend: only the CPU computes them.
+  void forward(dwt::PlaneSpan<double> plane, const dwt::DwtParams& params);
+  void inverse(dwt::PlaneSpan<double> plane, const dwt::DwtParams& params);
+  void forward(dwt::PlaneSpan<std::int64_t> plane, const dwt::DwtParams& params);
+  void inverse(dwt::PlaneSpan<std::int64_t> plane, const dwt::DwtParams& params);
 
  private:
   template <class T>
