@@ -29,17 +29,22 @@
 namespace {
 
 // PGX as the conformance suite and opj_decompress use it: "PG ML +|- depth width height\n", then
-// big-endian samples of 1, 2 or 4 bytes.
+// big-endian samples of 1, 2 or 4 bytes. Depths of 33 to 38 bits (T.800 allows 38) take 8 bytes
+// each in the same layout, an extension: the suite's files and OpenJPEG's reader stop at 32.
 std::vector<std::uint8_t> pgx_bytes(const codec::DecodedComponent& c) {
   const std::string header = "PG ML " + std::string(c.is_signed ? "-" : "+") + " " + std::to_string(c.precision) + " " +
                              std::to_string(c.width) + " " + std::to_string(c.height) + "\n";
-  const int bytes = c.precision <= 8 ? 1 : (c.precision <= 16 ? 2 : 4);
+  const int bytes = c.precision <= 8 ? 1 : c.precision <= 16 ? 2 : c.precision <= 32 ? 4 : 8;
   std::vector<std::uint8_t> out(header.begin(), header.end());
-  out.reserve(out.size() + c.samples.size() * static_cast<std::size_t>(bytes));
-  for (std::int32_t v : c.samples) {
-    const auto u = static_cast<std::uint32_t>(v);
+  const std::size_t count = c.precision > 31 ? c.wide_samples.size() : c.samples.size();
+  out.reserve(out.size() + count * static_cast<std::size_t>(bytes));
+  auto put = [&](std::uint64_t u) {
     for (int b = bytes - 1; b >= 0; --b) out.push_back(static_cast<std::uint8_t>(u >> (8 * b)));
-  }
+  };
+  if (c.precision > 31)
+    for (const std::int64_t v : c.wide_samples) put(static_cast<std::uint64_t>(v));
+  else
+    for (const std::int32_t v : c.samples) put(static_cast<std::uint32_t>(v));
   return out;
 }
 
@@ -118,7 +123,11 @@ class PnmSink : public codec::SampleSink {
  public:
   explicit PnmSink(std::string path) : path_(std::move(path)) {}
 
+  // Deeper samples than PNM holds are refused here, before anything is decoded.
+  bool takes_wide_samples() const override { return true; }
   void begin(const codec::DecodedImage& geometry) override {
+    for (const auto& c : geometry.components)
+      if (c.precision > 16) throw std::runtime_error("samples of more than 16 bits can only be written as PGX");
     image_ = geometry;
     if (pnm_raster_fits(geometry)) {
       const auto& c0 = geometry.components[0];

@@ -76,6 +76,27 @@ enc -o "$corpus/codestream/ht_lossless.j2k" --ht --lossless --levels 2
 enc -o "$corpus/codestream/ht_lossy.j2k" --ht --rate 8 --levels 2
 enc -o "$corpus/codestream/ht_precincts.j2k" --ht --lossless --precincts 8x8 --codeblock 4x4 --sop --eph --levels 2
 enc -o "$corpus/codestream/ht_file.jph" --ht --lossless --levels 1
+# Samples of 38 bits (64-bit planes), made from the lossless seed by its markers as
+# tests/support/deepened_stream.h makes them: SIZ 38 bits, QCD/QCC guard bits 7, exponents + 20.
+python3 - "$corpus/codestream/lossless.j2k" "$corpus/codestream/deep.j2k" <<'PY'
+import sys
+s = bytearray(open(sys.argv[1], "rb").read())
+pos = 2
+while pos + 4 <= len(s):
+    marker, length = s[pos] << 8 | s[pos + 1], s[pos + 2] << 8 | s[pos + 3]
+    if marker == 0xFF90:
+        break
+    if marker == 0xFF51:
+        for c in range(s[pos + 38] << 8 | s[pos + 39]):
+            s[pos + 40 + 3 * c] = 37
+    if marker in (0xFF5C, 0xFF5D):
+        at = pos + (4 if marker == 0xFF5C else 5)
+        s[at] = 7 << 5 | (s[at] & 31)
+        for k in range(at + 1, pos + 2 + length):
+            s[k] = ((s[k] >> 3) + 20) << 3
+    pos += 2 + length
+open(sys.argv[2], "wb").write(s)
+PY
 rm -f "$seed_image"
 # The conformance streams that are small enough to mutate quickly.
 if [ -d ../shared/conformance/streams ]; then

@@ -85,26 +85,8 @@ TEST(DwtCpu, FloatKernelsReconstructWhereTheFilterBankIsPerfect) {
           }
 }
 
-// Exact model of T.800's integer 5/3 (literal F-9/F-10 on canvas coordinates), applied 2-D in the
-// standard's order: columns then rows at each level.
-std::vector<long> rev53_reference(std::vector<long> v, Shape s, dwt::Origin o, int levels) {
-  long sx = o.x, sy = o.y, w = s.w, h = s.h;
-  for (int d = 0; d < levels; ++d) {
-    for (long x = 0; x < w; ++x) {
-      std::vector<long> col(static_cast<std::size_t>(h));
-      for (long y = 0; y < h; ++y) col[static_cast<std::size_t>(y)] = v[static_cast<std::size_t>(y * s.w + x)];
-      col = ref::rev53_analyse(col, sy);
-      for (long y = 0; y < h; ++y) v[static_cast<std::size_t>(y * s.w + x)] = col[static_cast<std::size_t>(y)];
-    }
-    for (long y = 0; y < h; ++y) {
-      std::vector<long> row(v.begin() + y * s.w, v.begin() + y * s.w + w);
-      row = ref::rev53_analyse(row, sx);
-      std::copy(row.begin(), row.end(), v.begin() + y * s.w);
-    }
-    const long nw = ref::low_count(sx, w), nh = ref::low_count(sy, h);
-    sx = (sx + 1) / 2, sy = (sy + 1) / 2, w = nw, h = nh;
-  }
-  return v;
+std::vector<long> rev53_reference(const std::vector<long>& v, Shape s, dwt::Origin o, int levels) {
+  return ref::rev53_analyse_2d(v, s.w, s.h, o.x, o.y, levels);
 }
 
 TEST(DwtCpu, Reversible53IsExactAgainstT800AndCloseToFloatReference) {

@@ -214,4 +214,26 @@ inline std::vector<long> rev53_analyse(const std::vector<long>& x, long i0) {
   return lo;
 }
 
+// The exact model applied 2-D in the standard's order (columns then rows at each level) to a
+// w x h plane at (x0, y0) on the canvas, leaving the Mallat layout the backends leave.
+inline std::vector<long> rev53_analyse_2d(std::vector<long> v, long w0, long h0, long x0, long y0, int levels) {
+  long sx = x0, sy = y0, w = w0, h = h0;
+  for (int d = 0; d < levels; ++d) {
+    for (long x = 0; x < w; ++x) {
+      std::vector<long> col(static_cast<std::size_t>(h));
+      for (long y = 0; y < h; ++y) col[static_cast<std::size_t>(y)] = v[static_cast<std::size_t>(y * w0 + x)];
+      col = rev53_analyse(col, sy);
+      for (long y = 0; y < h; ++y) v[static_cast<std::size_t>(y * w0 + x)] = col[static_cast<std::size_t>(y)];
+    }
+    for (long y = 0; y < h; ++y) {
+      std::vector<long> row(v.begin() + y * w0, v.begin() + y * w0 + w);
+      row = rev53_analyse(row, sx);
+      std::copy(row.begin(), row.end(), v.begin() + y * w0);
+    }
+    const long nw = low_count(sx, w), nh = low_count(sy, h);
+    sx = (sx + 1) / 2, sy = (sy + 1) / 2, w = nw, h = nh;
+  }
+  return v;
+}
+
 }  // namespace ref

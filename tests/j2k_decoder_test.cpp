@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
+#include <algorithm>
+#include <mutex>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -16,7 +19,9 @@
 #include "codec/decoder/decoder.h"
 #include "codec/encoder/encoder.h"
 #include "dwt_gpu/gpu_backend.h"
+#include "dwt_reference.h"
 #include "imageio/write.h"
+#include "support/deepened_stream.h"
 #include "support/option_matrix.h"
 #include "support/jp2_boxes.h"
 #include "support/scratch_dir.h"
@@ -750,6 +755,165 @@ TEST(J2kDecoderSink, DeliversEverySampleDecodeGives) {
     }
   } refusing;
   EXPECT_THROW((void)codec::decode_to(tiled, refusing, o), std::runtime_error);
+}
+
+// ---- Samples of more than 31 bits (T.800 allows 38) ----
+//
+// Streams of our encoder made deeper by their markers (support/deepened_stream.h says how).
+
+// T.800 G.2's forward RCT (G-5, G-6) in place on three planes: the inverse of what the decoder applies.
+void forward_rct(std::array<std::vector<long>, 3>& c) {
+  for (std::size_t i = 0; i < c[0].size(); ++i) {
+    const long r = c[0][i], g = c[1][i], b = c[2][i];
+    c[0][i] = (r + 2 * g + b) >> 2;  // floor
+    c[1][i] = b - g;
+    c[2][i] = r - g;
+  }
+}
+
+// The coefficients a lossless stream of `planes` (DC-shifted, as the encoder codes them) carries:
+// the forward RCT for three components, then T.800's 5/3 (dwt_reference.h's literal model).
+std::vector<std::vector<long>> coefficients(std::vector<std::vector<long>> planes, int w, int h, int levels) {
+  if (planes.size() == 3) {
+    std::array<std::vector<long>, 3> three{planes[0], planes[1], planes[2]};
+    forward_rct(three);
+    planes.assign(three.begin(), three.end());
+  }
+  for (auto& plane : planes) plane = ref::rev53_analyse_2d(plane, w, h, 0, 0, levels);
+  return planes;
+}
+
+// The 5/3 is a bijection of the integers and the RCT too, so the decoder's output is right exactly
+// when the forward model of it gives the coefficients the decoder reconstructs: 2^rise times the
+// 8-bit stream's (which the forward model of the input gives), plus half a step.
+TEST(J2kDecoderDeepSamples, ThirtyEightBitReversibleStreamsDecodeExactly) {
+  struct Depth {
+    int precision;
+    bool is_signed;
+    int rise;  // guard bits 2 -> 7, the exponents by rise - 5 (at most 31: the RCT chroma HH band's 11 + 20)
+  };
+  // 31 bits: int32 output from int64 planes (the blocks are deeper than the int32 form holds).
+  for (const Depth depth : {Depth{38, false, 25}, Depth{38, true, 25}, Depth{31, false, 20}})
+    for (const int channels : {1, 3}) {
+      const std::string what = std::to_string(channels) + " component(s), " + std::to_string(depth.precision) +
+                               (depth.is_signed ? " bits signed" : " bits unsigned");
+      SCOPED_TRACE(what);
+      const int w = 61, h = 47, levels = 3;
+      const auto img = image(Pattern::Mix, w, h, channels, 8);
+      auto p = lossless();
+      p.levels = levels;
+      p.codeblock_width = p.codeblock_height = 16;
+      ASSERT_EQ(p.guard_bits < 0 ? 2 : p.guard_bits, 2);
+      const auto stream = test_support::deepened(encode(img, p), depth.precision, depth.is_signed, 7, depth.rise - 5);
+      auto o = options();
+      o.threads = 2;
+      const codec::DecodedImage out = codec::decode(stream, o);
+      ASSERT_EQ(out.components.size(), static_cast<std::size_t>(channels));
+      std::vector<std::vector<long>> input, decoded;
+      const long dc = depth.is_signed ? 0 : long{1} << (depth.precision - 1);
+      const bool wide = depth.precision > 31;
+      for (int c = 0; c < channels; ++c) {
+        const codec::DecodedComponent& comp = out.components[static_cast<std::size_t>(c)];
+        ASSERT_EQ(comp.precision, depth.precision);
+        ASSERT_EQ(comp.is_signed, depth.is_signed);
+        ASSERT_EQ(comp.samples.size(), wide ? 0 : static_cast<std::size_t>(w * h));
+        ASSERT_EQ(comp.wide_samples.size(), wide ? static_cast<std::size_t>(w * h) : 0);
+        std::vector<long> in(static_cast<std::size_t>(w * h)), got(in.size());
+        for (int y = 0; y < h; ++y)
+          for (int x = 0; x < w; ++x) {
+            const auto i = static_cast<std::size_t>(y * w + x);
+            in[i] = static_cast<long>(img.at(x, y, c)) - 128;
+            got[i] = (wide ? comp.wide_samples[i] : comp.samples[i]) - dc;
+          }
+        input.push_back(std::move(in));
+        decoded.push_back(std::move(got));
+      }
+      // At 38 bits the coefficients outgrow int32; at 31 they fit, but their blocks start above
+      // the int32 form's top plane (which refused such streams before).
+      const auto want = coefficients(input, w, h, levels), got = coefficients(decoded, w, h, levels);
+      if (wide) {
+        EXPECT_GT(*std::max_element(got.back().begin(), got.back().end()), long{1} << 31);
+      }
+      // The planes below the raised ones are absent to the decoder, so it reconstructs each
+      // non-zero coefficient at the middle of what they leave open (E.1.1.2, r = 1/2).
+      auto raised = [&](long v) {
+        const long m = v < 0 ? -v : v;
+        const long r = m == 0 ? 0 : (m << depth.rise) + (long{1} << (depth.rise - 1));
+        return v < 0 ? -r : r;
+      };
+      for (std::size_t c = 0; c < want.size(); ++c)
+        for (std::size_t i = 0; i < want[c].size(); ++i)
+          ASSERT_EQ(got[c][i], raised(want[c][i])) << "component " << c << " coefficient " << i;
+    }
+}
+
+// An irreversible stream deepened to 38 bits decodes (on double planes) to 2^30 times what its
+// 8-bit original decodes to before rounding: within half a unit of the 8-bit decode, clamped alike.
+TEST(J2kDecoderDeepSamples, ThirtyEightBitIrreversibleStreamsScaleTheEightBitDecode) {
+  const int w = 70, h = 45;
+  const auto img = image(Pattern::Mix, w, h, 3, 8);
+  const auto original = encode(img, lossy());
+  const codec::DecodedImage narrow = codec::decode(original, options());
+  const codec::DecodedImage deep = codec::decode(test_support::deepened(original, 38, false, -1, 0), options());
+  ASSERT_EQ(deep.components.size(), 3u);
+  for (std::size_t c = 0; c < 3; ++c) {
+    const codec::DecodedComponent& d = deep.components[c];
+    ASSERT_EQ(d.precision, 38);
+    ASSERT_EQ(d.wide_samples.size(), narrow.components[c].samples.size());
+    double worst = 0;
+    for (std::size_t i = 0; i < d.wide_samples.size(); ++i) {
+      const double scaled = std::min(std::ldexp(static_cast<double>(d.wide_samples[i]), -30), 255.0);
+      worst = std::max(worst, std::abs(scaled - narrow.components[c].samples[i]));
+    }
+    EXPECT_LE(worst, 0.501) << "component " << c;
+  }
+}
+
+// decode_to hands a sink that takes 64-bit rows what decode gives, and refuses before decoding a
+// sink that does not.
+TEST(J2kDecoderDeepSamples, SinksGetDeepRowsOrARefusal) {
+  const auto img = image(Pattern::Mix, 53, 38, 3, 8);
+  auto p = lossless();
+  p.tile_width = 32;
+  p.tile_height = 24;
+  const auto stream = test_support::deepened(encode(img, p), 38, false, 7, 20);
+  auto o = options();
+  o.threads = 2;
+  const codec::DecodedImage want = codec::decode(stream, o);
+  struct DeepSink : codec::SampleSink {
+    std::vector<std::vector<std::int64_t>> planes;
+    std::vector<int> widths;
+    std::mutex lock;
+    void begin(const codec::DecodedImage& g) override {
+      for (const auto& c : g.components) {
+        planes.emplace_back(static_cast<std::size_t>(c.width * c.height), -1);
+        widths.push_back(c.width);
+      }
+    }
+    void put_row(std::size_t, std::size_t, std::size_t, std::span<const std::int32_t>) override {
+      ADD_FAILURE() << "a 38-bit row came as int32";
+    }
+    bool takes_wide_samples() const override { return true; }
+    void put_row_wide(std::size_t c, std::size_t x, std::size_t y, std::span<const std::int64_t> row) override {
+      const std::lock_guard<std::mutex> hold(lock);
+      std::copy(row.begin(), row.end(), planes[c].begin() + static_cast<std::ptrdiff_t>(y * widths[c] + x));
+    }
+  } sink;
+  (void)codec::decode_to(stream, sink, o);
+  ASSERT_EQ(sink.planes.size(), want.components.size());
+  for (std::size_t c = 0; c < sink.planes.size(); ++c) EXPECT_EQ(sink.planes[c], want.components[c].wide_samples);
+
+  struct NarrowSink : codec::SampleSink {
+    int rows = 0;
+    void put_row(std::size_t, std::size_t, std::size_t, std::span<const std::int32_t>) override { ++rows; }
+  } narrow;
+  try {
+    (void)codec::decode_to(stream, narrow, o);
+    ADD_FAILURE() << "a sink of 31-bit samples took a 38-bit image";
+  } catch (const codec::DecodeError& e) {
+    EXPECT_NE(std::string(e.what()).find("38 bits"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(narrow.rows, 0);
 }
 
 // ---- The T.803 conformance streams (../shared/conformance) ----

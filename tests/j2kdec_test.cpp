@@ -17,6 +17,8 @@
 #include "codec/encoder/encoder.h"
 #include "glcontext/context.h"
 #include "imageio/read.h"
+#include "codec/decoder/decoder.h"
+#include "support/deepened_stream.h"
 #include "support/external_decode.h"
 #include "support/jp2_boxes.h"
 #include "support/scratch_dir.h"
@@ -342,4 +344,40 @@ TEST_F(J2kdecCli, ResolutionReachesTheOutput) {
   const imageio::Image from_grok = decoded(scratch / "grok.jp2", "from_grok.png");
   EXPECT_NEAR(from_grok.x_pixels_per_metre, 3780, 1.0);
   EXPECT_NEAR(from_grok.y_pixels_per_metre, 2000, 1.0);
+}
+
+// A 38-bit stream (support/deepened_stream.h) goes to PGX with 8-byte samples, the library's
+// decode exactly; formats that cannot hold 38 bits refuse it in one line, and write nothing.
+TEST_F(J2kdecCli, ThirtyEightBitSamplesGoToPgxAndNowhereElse) {
+  const imageio::Image img = testimages::generate(testimages::Pattern::Mix, 37, 29, 1, 8);
+  codec::EncodeParams p;
+  p.lossless = true;
+  p.threads = 1;
+  const auto deep = test_support::deepened(
+      codec::encode(codec::to_source_image(img, "mix"), p, codec::FileFormat::Codestream), 38, false, 7, 20);
+  const fs::path input = scratch / "deep.j2k";
+  std::ofstream(input, std::ios::binary)
+      .write(reinterpret_cast<const char*>(deep.data()), static_cast<std::streamsize>(deep.size()));
+  const codec::DecodedImage want = codec::decode(deep);
+  ASSERT_EQ(want.components.size(), 1u);
+  ASSERT_EQ(want.components[0].wide_samples.size(), 37u * 29u);
+
+  const auto r = j2kdec("-i '" + input.string() + "' -o '" + (scratch / "deep.pgx").string() + "'", scratch.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string pgx = file_bytes(scratch / "deep_0.pgx");
+  const std::string header = "PG ML + 38 37 29\n";
+  ASSERT_EQ(pgx.substr(0, header.size()), header);
+  ASSERT_EQ(pgx.size(), header.size() + 37u * 29u * 8u);
+  for (std::size_t i = 0; i < want.components[0].wide_samples.size(); ++i) {
+    std::uint64_t v = 0;
+    for (std::size_t b = 0; b < 8; ++b) v = v << 8 | static_cast<unsigned char>(pgx[header.size() + 8 * i + b]);
+    ASSERT_EQ(static_cast<std::int64_t>(v), want.components[0].wide_samples[i]) << "sample " << i;
+  }
+  for (const std::string name : {"deep.png", "deep.tif", "deep.pgm"}) {
+    const auto refused = j2kdec("-i '" + input.string() + "' -o '" + (scratch / name).string() + "'", scratch.path());
+    EXPECT_EQ(refused.exit_code, 1) << name;
+    EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+    EXPECT_NE(refused.err.find("bits"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(scratch / name)) << name;
+  }
 }

@@ -99,6 +99,7 @@ DecodedImage to_public(codec::DecodedImage&& image) {
     DecodedComponent d;
     static_cast<ComponentInfo&>(d) = info_of(c);
     d.samples = std::move(c.samples);
+    d.wide_samples = std::move(c.wide_samples);
     out.components.push_back(std::move(d));
   }
   return out;
@@ -114,7 +115,7 @@ bool fits(SampleType type, const codec::DecodedComponent& c) {
     case SampleType::Int16:
       return c.is_signed ? c.precision <= 16 : c.precision <= 15;
     case SampleType::Int32:
-      return true;
+      return c.precision <= 31;  // deeper components come as int64 rows (the decoder refuses them here)
   }
   return false;
 }

@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
@@ -135,11 +136,13 @@ gpuj2k::DecodeOptions decode_options(int reduce, int layers, const std::optional
 }
 
 // A decoded image as one array: (H, W) for one component, (H, W, C) for several, all of one size;
-// uint8 up to 8 unsigned bits, uint16 up to 16, int16 for signed up to 16, int32 otherwise.
+// uint8 up to 8 unsigned bits, uint16 up to 16, int16 for signed up to 16, int32 up to 31, int64
+// beyond (JPEG 2000 allows 38).
 py::array to_array(gpuj2k::DecodedImage&& image) {
   if (image.components.empty()) throw gpuj2k::Error("the image has no components");
   const gpuj2k::DecodedComponent& first = image.components.front();
   bool any_signed = false, all_unsigned_8 = true, all_unsigned_16 = true, all_signed_16 = true;
+  int deepest = 0;
   for (std::size_t c = 0; c < image.components.size(); ++c) {
     const gpuj2k::DecodedComponent& comp = image.components[c];
     if (comp.width != first.width || comp.height != first.height)
@@ -150,6 +153,7 @@ py::array to_array(gpuj2k::DecodedImage&& image) {
     all_unsigned_8 &= !comp.is_signed && comp.precision <= 8;
     all_unsigned_16 &= !comp.is_signed && comp.precision <= 16;
     all_signed_16 &= comp.is_signed ? comp.precision <= 16 : comp.precision <= 15;
+    deepest = std::max(deepest, comp.precision);
   }
   const auto h = static_cast<py::ssize_t>(first.height), w = static_cast<py::ssize_t>(first.width);
   const auto nc = static_cast<py::ssize_t>(image.components.size());
@@ -159,14 +163,18 @@ py::array to_array(gpuj2k::DecodedImage&& image) {
     py::array_t<T> out(shape);
     T* dst = out.mutable_data();
     for (py::ssize_t c = 0; c < nc; ++c) {
-      const std::vector<std::int32_t>& s = image.components[static_cast<std::size_t>(c)].samples;
-      for (std::size_t i = 0; i < s.size(); ++i) dst[static_cast<py::ssize_t>(i) * nc + c] = static_cast<T>(s[i]);
+      const gpuj2k::DecodedComponent& comp = image.components[static_cast<std::size_t>(c)];
+      auto copy = [&](const auto& s) {
+        for (std::size_t i = 0; i < s.size(); ++i) dst[static_cast<py::ssize_t>(i) * nc + c] = static_cast<T>(s[i]);
+      };
+      comp.precision > 31 ? copy(comp.wide_samples) : copy(comp.samples);
     }
     return py::array(out);
   };
   if (all_unsigned_8) return fill(std::uint8_t{});
   if (all_unsigned_16) return fill(std::uint16_t{});
   if (any_signed && all_signed_16) return fill(std::int16_t{});
+  if (deepest > 31) return fill(std::int64_t{});
   return fill(std::int32_t{});
 }
 
@@ -225,8 +233,9 @@ PYBIND11_MODULE(gpuj2k, m) {
   m.def("decode", &decode, py::arg("data"), py::kw_only(), py::arg("reduce") = 0, py::arg("layers") = 0,
         py::arg("components") = py::none(), py::arg("region") = py::none(), py::arg("threads") = 0,
         py::arg("dwt") = "cpu",
-        "Decodes a codestream, JP2 or JPH file given as bytes into a (H, W) or (H, W, C) array (uint8, uint16, int16 "
-        "or int32 by the samples' precision). reduce: finest levels dropped; layers: 0 for all; components: indices "
+        "Decodes a codestream, JP2 or JPH file given as bytes into a (H, W) or (H, W, C) array (uint8, uint16, int16, "
+        "int32 or int64 by the samples' precision). reduce: finest levels dropped; layers: 0 for all; components: "
+        "indices "
         "in output order; region: (x, y, width, height) on the full-resolution grid.");
   m.def("decode_file", &decode_file, py::arg("path"), py::kw_only(), py::arg("reduce") = 0, py::arg("layers") = 0,
         py::arg("components") = py::none(), py::arg("region") = py::none(), py::arg("threads") = 0,

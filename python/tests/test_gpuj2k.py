@@ -186,6 +186,32 @@ class DecodeArrays(unittest.TestCase):
                                       image[5:25, 10:40][:, :, [2, 0]])
         self.assertEqual(gpuj2k.decode(data, reduce=2).shape, (16, 20, 3))
 
+    def test_samples_of_38_bits_come_as_int64(self):
+        # Our encoder writes up to 16 bits; a deeper stream is made from an 8-bit one by its markers
+        # (as tests/support/deepened_stream.h does): SIZ says 38 bits, QCD raises the guard bits
+        # 2 -> 7 and the exponents by 20, so every coded bit-plane moves 25 planes up. With no
+        # wavelet levels the samples are the coefficients: each non-zero one then decodes to
+        # 2^25 times itself plus half the step the absent planes leave open.
+        image = pattern(19, 23, 1, np.uint8, 8)
+        data = bytearray(gpuj2k.encode(image, lossless=True, levels=0))
+        pos = 2
+        while True:
+            marker, length = int.from_bytes(data[pos:pos + 2], "big"), int.from_bytes(data[pos + 2:pos + 4], "big")
+            if marker == 0xFF90:
+                break
+            if marker == 0xFF51:
+                data[pos + 40] = 37  # Ssiz: 38 bits, unsigned
+            if marker == 0xFF5C:
+                data[pos + 4] = 7 << 5 | (data[pos + 4] & 31)
+                for k in range(pos + 5, pos + 2 + length):
+                    data[k] = ((data[k] >> 3) + 20) << 3
+            pos += 2 + length
+        decoded = gpuj2k.decode(bytes(data))
+        self.assertEqual(decoded.dtype, np.int64)
+        centred = image.astype(np.int64) - 128
+        raised = np.sign(centred) * ((np.abs(centred) << 25) + (1 << 24))
+        np.testing.assert_array_equal(decoded, raised + (1 << 37))
+
     def test_bad_streams_raise_the_library_error(self):
         for data in (b"hello", gpuj2k.encode(pattern(8, 8, 1, np.uint8, 8), lossless=True)[:30]):
             with self.assertRaises(gpuj2k.Error):

@@ -81,9 +81,12 @@ ColumnGrid clear_column_grid(int width, int height) {
   return ColumnGrid{words.data() + stride + 1, stride};
 }
 
+// `Value` holds the decoded coefficients: int32 for up to kMaxTopPlane + 1 bit-planes, int64 for
+// the deeper blocks of samples over 31 bits (or large ROI shifts).
+template <class Value>
 class BlockDecoder {
  public:
-  BlockDecoder(int w, int h, BandOrientation o, const t1::BlockStyle& style, std::span<std::int32_t> out)
+  BlockDecoder(int w, int h, BandOrientation o, const t1::BlockStyle& style, std::span<Value> out)
       : w_(w), h_(h), grid_(clear_column_grid(w, h)), zc_(zero_coding_table(o)), style_(style), out_(out.data()) {
     reset(cx_);
   }
@@ -147,17 +150,16 @@ class BlockDecoder {
 
   // Records that row r of the column at `w` (output row `value_row`) turned significant with the
   // given sign: the column words, and the value at the middle of [2^plane, 2^(plane+1)), doubled.
-  void become_significant(std::uint32_t* w, int r, std::int32_t* value, unsigned negative, int plane) {
+  void become_significant(std::uint32_t* w, int r, Value* value, unsigned negative, int plane) {
     column::make_significant(w, grid_.stride, r, negative, style_.vertically_causal);
-    const std::int32_t magnitude = std::int32_t{3} << plane;  // 1.5 * 2^plane, doubled
+    const Value magnitude = Value{3} << plane;  // 1.5 * 2^plane, doubled
     *value = negative ? -magnitude : magnitude;
   }
 
   // D.3.1 on row r of the column at `w` (`column_top` its row 0 in the output): an insignificant
   // sample with at least one significant neighbour.
   template <class Symbols>
-  [[gnu::always_inline]] void significance_row(std::uint32_t* w, int r, std::int32_t* column_top, int plane,
-                                               Symbols& s) {
+  [[gnu::always_inline]] void significance_row(std::uint32_t* w, int r, Value* column_top, int plane, Symbols& s) {
     const std::uint32_t around = *w >> (3 * r);  // reloaded: the row above may have changed it
     if ((around & column::kCentre) || !(around & column::kNeighbours)) return;
     *w |= column::visited(r);
@@ -172,7 +174,7 @@ class BlockDecoder {
     for (int y0 = 0; y0 < h_; y0 += 4) {
       const int rows = std::min(4, h_ - y0);
       std::uint32_t* words = grid_.origin + (y0 / 4) * grid_.stride;
-      std::int32_t* top = out_ + static_cast<std::ptrdiff_t>(y0) * w_;
+      Value* top = out_ + static_cast<std::ptrdiff_t>(y0) * w_;
       if (rows == 4)
         significance_stripe<true>(words, top, 4, plane, s);
       else
@@ -183,8 +185,7 @@ class BlockDecoder {
   // One stripe of the significance pass; a full stripe (known at compile time, not tested per
   // column) has its four rows written out.
   template <bool kFull, class Symbols>
-  [[gnu::always_inline]] void significance_stripe(std::uint32_t* words, std::int32_t* top, int rows, int plane,
-                                                  Symbols& s) {
+  [[gnu::always_inline]] void significance_stripe(std::uint32_t* words, Value* top, int rows, int plane, Symbols& s) {
     for (int x = 0; x < w_; ++x) {
       std::uint32_t* w = words + x;
       if ((*w & column::kWindow) == 0) continue;  // no significant neighbour anywhere
@@ -202,22 +203,22 @@ class BlockDecoder {
   // D.3.3 on row r of a column whose word is `word` (`column_top` its row 0 in the output): the
   // refinement bit of a sample significant before this bit-plane, context by Table D.4.
   template <class Symbols>
-  [[gnu::always_inline]] static void refine_row(std::uint32_t word, int r, std::int32_t* column_top, std::int32_t half,
-                                                Symbols& s, int width) {
+  [[gnu::always_inline]] static void refine_row(std::uint32_t word, int r, Value* column_top, Value half, Symbols& s,
+                                                int width) {
     const int bit = s.even_decision(t1::refinement_context(word, r));
     // The interval halves: its middle moves up or down by a quarter of the old width.
-    std::int32_t& v = column_top[r * width];
-    const std::int32_t step = bit ? half : -half;
+    Value& v = column_top[r * width];
+    const Value step = bit ? half : -half;
     v += v < 0 ? -step : step;
   }
 
   // D.3.3: samples significant before this bit-plane; context by Table D.4.
   template <class Symbols>
   void refinement_pass(int plane, Symbols s) {
-    const std::int32_t half = std::int32_t{1} << plane;
+    const Value half = Value{1} << plane;
     for (int y0 = 0; y0 < h_; y0 += 4) {
       std::uint32_t* words = grid_.origin + (y0 / 4) * grid_.stride;
-      std::int32_t* top = out_ + static_cast<std::ptrdiff_t>(y0) * w_;
+      Value* top = out_ + static_cast<std::ptrdiff_t>(y0) * w_;
       for (int x = 0; x < w_; ++x) {
         const std::uint32_t word = words[x];  // refinement changes no significance: one load does
         // None significant, at low rates most columns: skipped before the due rows are worked out.
@@ -237,7 +238,7 @@ class BlockDecoder {
 
   // D.3.4 on row r of the column at `w` (`column_top` its row 0 in the output), outside run-length
   // mode: a sample neither significant nor coded by this bit-plane's significance pass.
-  [[gnu::always_inline]] void cleanup_row(std::uint32_t* w, int r, std::int32_t* column_top, int plane, MqSymbols& s) {
+  [[gnu::always_inline]] void cleanup_row(std::uint32_t* w, int r, Value* column_top, int plane, MqSymbols& s) {
     const std::uint32_t word = *w;  // reloaded: the row above may have changed it
     if (word & (column::self(r) | column::visited(r))) return;
     if (s.decision(zc_[(word >> (3 * r)) & column::kNeighbourhood]))
@@ -247,8 +248,8 @@ class BlockDecoder {
   // One stripe of the cleanup pass; only a full stripe (known at compile time) may be run-length
   // decoded (D.3.4), and has its rows written out.
   template <bool kFull>
-  [[gnu::always_inline]] void cleanup_stripe(std::uint32_t* words, std::int32_t* top, int rows, int plane,
-                                             MqDecoder& mq, MqSymbols& s) {
+  [[gnu::always_inline]] void cleanup_stripe(std::uint32_t* words, Value* top, int rows, int plane, MqDecoder& mq,
+                                             MqSymbols& s) {
     for (int x = 0; x < w_; ++x) {
       std::uint32_t* w = words + x;
       if constexpr (kFull) {
@@ -299,7 +300,7 @@ class BlockDecoder {
     for (int y0 = 0; y0 < h_; y0 += 4) {
       const int rows = std::min(4, h_ - y0);
       std::uint32_t* words = grid_.origin + (y0 / 4) * grid_.stride;
-      std::int32_t* top = out_ + static_cast<std::ptrdiff_t>(y0) * w_;
+      Value* top = out_ + static_cast<std::ptrdiff_t>(y0) * w_;
       if (rows == 4)
         cleanup_stripe<true>(words, top, 4, plane, mq, s);
       else
@@ -317,23 +318,34 @@ class BlockDecoder {
   ColumnGrid grid_;
   const t1::ZeroCodingTable& zc_;
   t1::BlockStyle style_;
-  std::int32_t* out_;
+  Value* out_;
   Contexts cx_{};
   MqDecoder mq_;
   RawDecoder raw_;
 };
 
+template <class Value>
+void decode_code_block(const BlockCodewords& block, int width, int height, BandOrientation orientation,
+                       const t1::BlockStyle& style, std::span<Value> out, int max_top_plane) {
+  std::fill(out.begin(), out.end(), 0);
+  if (block.passes <= 0 || width <= 0 || height <= 0) return;
+  if (block.top_plane > max_top_plane)
+    throw DecodeError("a code-block has " + std::to_string(block.top_plane + 1) +
+                      " magnitude bit-planes; this decoder handles at most " + std::to_string(max_top_plane + 1));
+  BlockDecoder<Value> decoder(width, height, orientation, style, out);
+  decoder.run(block);
+}
+
 }  // namespace
 
 void decode_code_block(const BlockCodewords& block, int width, int height, BandOrientation orientation,
                        const t1::BlockStyle& style, std::span<std::int32_t> out) {
-  std::fill(out.begin(), out.end(), 0);
-  if (block.passes <= 0 || width <= 0 || height <= 0) return;
-  if (block.top_plane > kMaxTopPlane)
-    throw DecodeError("a code-block has " + std::to_string(block.top_plane + 1) +
-                      " magnitude bit-planes; this decoder handles at most " + std::to_string(kMaxTopPlane + 1));
-  BlockDecoder decoder(width, height, orientation, style, out);
-  decoder.run(block);
+  decode_code_block(block, width, height, orientation, style, out, kMaxTopPlane);
+}
+
+void decode_code_block(const BlockCodewords& block, int width, int height, BandOrientation orientation,
+                       const t1::BlockStyle& style, std::span<std::int64_t> out) {
+  decode_code_block(block, width, height, orientation, style, out, kMaxWideTopPlane);
 }
 
 }  // namespace codec::dec

@@ -24,8 +24,11 @@ struct BlockCodewords {
 };
 
 // The most significant bit-plane a block may start at: the decoder keeps each magnitude, with
-// its reconstruction half-step, in 31 bits (3 * 2^plane at most).
+// its reconstruction half-step, in 31 bits (3 * 2^plane at most); in 63 for the int64 form, which
+// blocks deeper than that need (samples of more than 31 bits, T.800's 38 with the transform's
+// growth and guard bits, or large ROI shifts).
 inline constexpr int kMaxTopPlane = 29;
+inline constexpr int kMaxWideTopPlane = 61;
 
 // EBCOT tier-1 decoding (T.800 Annex D, every code-block style switch) of a w x h code-block of
 // band `orientation`. Writes `out` (w*h, row-major): each coefficient as sign and twice its
@@ -34,5 +37,8 @@ inline constexpr int kMaxTopPlane = 29;
 // 2|q|+1, and one decoded down to plane p reads (2|q>>p|+1) << p.
 void decode_code_block(const BlockCodewords& block, int width, int height, BandOrientation orientation,
                        const t1::BlockStyle& style, std::span<std::int32_t> out);
+// The same with int64 coefficients, for blocks of up to kMaxWideTopPlane + 1 bit-planes.
+void decode_code_block(const BlockCodewords& block, int width, int height, BandOrientation orientation,
+                       const t1::BlockStyle& style, std::span<std::int64_t> out);
 
 }  // namespace codec::dec

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <memory>
 #include <optional>
+#include <utility>
 
 #include "base/thread_pool.h"
 #include "codec/dwt_choice/dwt_choice.h"
@@ -70,15 +71,14 @@ DecodedImage allocate_image(const dec::Siz& siz, const Rect& window, const std::
     if (!selected[c]) continue;
     const Rect area = tile_component_rect(window, siz.components[c].dx, siz.components[c].dy);
     const std::int64_t w = reduced(area.x1, r) - reduced(area.x0, r), h = reduced(area.y1, r) - reduced(area.y0, r);
-    bytes += static_cast<double>(w) * static_cast<double>(h) * sizeof(std::int32_t);
+    const double sample_bytes = siz.components[c].precision > 31 ? sizeof(std::int64_t) : sizeof(std::int32_t);
+    bytes += static_cast<double>(w) * static_cast<double>(h) * sample_bytes;
   }
   if (bytes > static_cast<double>(options.max_memory))
     throw DecodeError("the image would need " + std::to_string(static_cast<long long>(bytes / 1048576)) +
                       " MiB, over the memory limit of " + std::to_string(options.max_memory >> 20) + " MiB");
   for (std::size_t c = 0; c < siz.components.size(); ++c) {
     const dec::ComponentSize& size = siz.components[c];
-    if (size.precision > 31)
-      throw DecodeError("components of " + std::to_string(size.precision) + " bits are not supported yet (at most 31)");
     const Rect area = tile_component_rect(window, size.dx, size.dy);
     DecodedComponent out;
     out.x0 = static_cast<int>(reduced(area.x0, r));
@@ -92,9 +92,11 @@ DecodedImage allocate_image(const dec::Siz& siz, const Rect& window, const std::
       out.height = static_cast<int>(reduced(area.y1, r) - out.y0);
       // Huge pages where the system offers them: a 2048x2048 component is 4096 ordinary pages, each
       // faulted in and cleared on its first touch (imageio/plane_memory.h).
-      if (with_samples)
-        imageio::resize_with_huge_pages(out.samples,
-                                        static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height));
+      const std::size_t n = static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height);
+      if (with_samples && size.precision > 31)
+        imageio::resize_with_huge_pages(out.wide_samples, n);
+      else if (with_samples)
+        imageio::resize_with_huge_pages(out.samples, n);
     }
     img.components.push_back(std::move(out));
   }
@@ -233,17 +235,34 @@ namespace {
 void hand_over(DecodedImage& image, SampleSink& sink, base::ThreadPool& pool) {
   // The samples move out, so that the image the sink begins with is its geometry alone, uncopied.
   std::vector<std::vector<std::int32_t>> samples;
-  for (DecodedComponent& comp : image.components) samples.push_back(std::move(comp.samples));
-  for (DecodedComponent& comp : image.components) comp.samples = {};
+  std::vector<std::vector<std::int64_t>> wide_samples;
+  for (DecodedComponent& comp : image.components) {
+    samples.push_back(std::exchange(comp.samples, {}));
+    wide_samples.push_back(std::exchange(comp.wide_samples, {}));
+  }
   sink.begin(image);
   for (std::size_t c = 0; c < image.components.size(); ++c) {
-    const std::vector<std::int32_t>& rows = samples[c];
     const auto width = static_cast<std::size_t>(image.components[c].width);
-    if (rows.empty()) continue;
-    pool.parallel_for(static_cast<std::size_t>(image.components[c].height), [&](std::size_t y) {
-      sink.put_row(c, 0, y, std::span<const std::int32_t>(rows.data() + y * width, width));
-    });
+    const auto height = static_cast<std::size_t>(image.components[c].height);
+    if (const std::vector<std::int32_t>& rows = samples[c]; !rows.empty())
+      pool.parallel_for(height, [&](std::size_t y) {
+        sink.put_row(c, 0, y, std::span<const std::int32_t>(rows.data() + y * width, width));
+      });
+    if (const std::vector<std::int64_t>& rows = wide_samples[c]; !rows.empty())
+      pool.parallel_for(height, [&](std::size_t y) {
+        sink.put_row_wide(c, 0, y, std::span<const std::int64_t>(rows.data() + y * width, width));
+      });
   }
+}
+
+// A sink that takes only 31-bit samples is refused an image with deeper components before anything
+// is decoded.
+void check_sink_takes(const DecodedImage& image, const SampleSink& sink) {
+  if (sink.takes_wide_samples()) return;
+  for (const DecodedComponent& comp : image.components)
+    if (comp.precision > 31)
+      throw DecodeError("a component has " + std::to_string(comp.precision) +
+                        " bits, more than this output takes (31)");
 }
 
 // The samples of a tile missing from the stream (its part `area` of the window, on the reference
@@ -257,9 +276,14 @@ void put_zero_rows(const Rect& area, const DecodedImage& image, int reduce, Samp
         Rect{reduced(a.x0, reduce), reduced(a.y0, reduce), reduced(a.x1, reduce), reduced(a.y1, reduce)}.intersect(
             Rect{comp.x0, comp.y0, std::int64_t{comp.x0} + comp.width, std::int64_t{comp.y0} + comp.height});
     if (rows.empty()) continue;
-    const std::vector<std::int32_t> zeros(static_cast<std::size_t>(rows.width()), 0);
-    for (std::int64_t y = rows.y0; y < rows.y1; ++y)
-      sink.put_row(c, static_cast<std::size_t>(rows.x0 - comp.x0), static_cast<std::size_t>(y - comp.y0), zeros);
+    const auto x = static_cast<std::size_t>(rows.x0 - comp.x0), n = static_cast<std::size_t>(rows.width());
+    for (std::int64_t y = rows.y0; y < rows.y1; ++y) {
+      const auto row = static_cast<std::size_t>(y - comp.y0);
+      if (comp.precision > 31)
+        sink.put_row_wide(c, x, row, std::vector<std::int64_t>(n, 0));
+      else
+        sink.put_row(c, x, row, std::vector<std::int32_t>(n, 0));
+    }
   }
 }
 
@@ -282,6 +306,7 @@ DecodedImage decode_with(std::span<const std::uint8_t> bytes, const DecodeOption
   // A sink takes the tiles' rows as they are made, unless the output needs the whole image first.
   const bool rows_to_sink = sink && options.components.empty() && !(jp2 && rewrites_channels(*jp2));
   DecodedImage image = allocate_image(cs.siz, window, selected, options, !rows_to_sink);
+  if (sink) check_sink_takes(image, *sink);
   image.warnings = cs.warnings;
   if (jp2) take_jp2_metadata(*jp2, options.reduce, image);
   if (rows_to_sink) {
@@ -289,7 +314,8 @@ DecodedImage decode_with(std::span<const std::uint8_t> bytes, const DecodeOption
     sink->begin(image);
   }
   double image_bytes = 0;
-  for (const DecodedComponent& c : image.components) image_bytes += static_cast<double>(c.samples.size()) * 4;
+  for (const DecodedComponent& c : image.components)
+    image_bytes += static_cast<double>(c.samples.size()) * 4 + static_cast<double>(c.wide_samples.size()) * 8;
   base::ThreadPool pool(options.threads);
   report.threads = pool.size();
   dwt_cpu::CpuBackend cpu(pool);
@@ -302,6 +328,7 @@ DecodedImage decode_with(std::span<const std::uint8_t> bytes, const DecodeOption
   setup.options = &options;
   setup.pool = &pool;
   setup.reversible_backend = &cpu;
+  setup.wide_backend = &cpu;
   setup.irreversible_backend = options.irreversible_backend ? options.irreversible_backend : dwt.backend.get();
   setup.memory_budget = static_cast<std::size_t>(static_cast<double>(options.max_memory) - image_bytes);
   setup.window = window;
@@ -361,6 +388,10 @@ DecodedImage decode_file_with(const std::string& path, const DecodeOptions& opti
 }
 
 }  // namespace
+
+void SampleSink::put_row_wide(std::size_t, std::size_t, std::size_t, std::span<const std::int64_t>) {
+  throw DecodeError("this output takes samples of at most 31 bits");  // check_sink_takes refuses such images first
+}
 
 DecodedImage decode(std::span<const std::uint8_t> bytes, const DecodeOptions& options, DecodeReport* report) {
   return decode_with(bytes, options, report, nullptr);

@@ -23,6 +23,8 @@ std::vector<DecodedComponent> map_channels(const Jp2File& jp2, const std::vector
       continue;
     }
     if (palette.entries == 0) throw DecodeError("JP2 cmap maps through a palette, but there is no pclr box");
+    if (from.precision > 31)
+      throw DecodeError("JP2 palette indices of " + std::to_string(from.precision) + " bits (at most 31 supported)");
     const auto column = static_cast<std::size_t>(source.palette_column);
     if (palette.precision[column] > 31)
       throw DecodeError("JP2 palette column of " + std::to_string(palette.precision[column]) +

@@ -14,6 +14,38 @@ SampleRange sample_range(int precision, bool is_signed) {
   return r;
 }
 
+WideSampleRange wide_sample_range(int precision, bool is_signed) {
+  const std::int64_t half = std::int64_t{1} << (precision - 1);
+  return is_signed ? WideSampleRange{0, -half, half - 1} : WideSampleRange{half, 0, 2 * half - 1};
+}
+
+std::int64_t wide_sample(std::int64_t v, const WideSampleRange& range) {
+  // Saturating first: a hostile stream's coefficients may be anywhere in int64.
+  constexpr std::int64_t kReach = std::int64_t{1} << 62;
+  return std::clamp(std::clamp(v, -kReach, kReach) + range.shift, range.lo, range.hi);
+}
+
+std::int64_t wide_sample(double v, const WideSampleRange& range) {
+  constexpr double kReach = 0x1p62;
+  if (!std::isfinite(v)) return wide_sample(std::int64_t{0}, range);
+  return wide_sample(static_cast<std::int64_t>(std::nearbyint(std::clamp(v, -kReach, kReach))), range);
+}
+
+std::int64_t inverse_rct(std::int64_t y, std::int64_t cb, std::int64_t cr, std::size_t c) {
+  // G-7 in wrapping arithmetic (hostile values may overflow; wide_sample then clamps them).
+  auto add = [](std::int64_t a, std::int64_t b) {
+    return static_cast<std::int64_t>(static_cast<std::uint64_t>(a) + static_cast<std::uint64_t>(b));
+  };
+  const std::int64_t g =
+      static_cast<std::int64_t>(static_cast<std::uint64_t>(y) - static_cast<std::uint64_t>(add(cb, cr) >> 2));
+  return c == 0 ? add(cr, g) : c == 1 ? g : add(cb, g);
+}
+
+double inverse_ict(double y, double cb, double cr, std::size_t c) {
+  // G-9, with T.800's coefficients, as ict_to_samples.
+  return c == 0 ? y + 1.402 * cr : c == 1 ? y - 0.34413 * cb - 0.71414 * cr : y + 1.772 * cb;
+}
+
 namespace reference {
 namespace {
 

@@ -33,6 +33,21 @@ void rct_to_samples(const std::int32_t* y, const std::int32_t* cb, const std::in
 void ict_to_samples(const float* y, const float* cb, const float* cr, const OutputRanges& ranges, const OutputRows& out,
                     std::size_t n);
 
+// Components of more than 31 bits (up to T.800's 38), and any from 64-bit planes: G.1.2 one
+// sample at a time in int64, and the inverse RCT and ICT in int64 and double (G-7, G-9).
+struct WideSampleRange {
+  std::int64_t shift = 0;
+  std::int64_t lo = 0, hi = 0;
+};
+WideSampleRange wide_sample_range(int precision, bool is_signed);  // precision 1..38
+// v + shift clamped to [lo, hi]; a double rounded to the nearest integer first (ties to even), 0
+// if it is not a finite number.
+std::int64_t wide_sample(std::int64_t v, const WideSampleRange& range);
+std::int64_t wide_sample(double v, const WideSampleRange& range);
+// Component c (0 R, 1 G, 2 B) of the inverse RCT or ICT of one sample's Y, Cb, Cr.
+std::int64_t inverse_rct(std::int64_t y, std::int64_t cb, std::int64_t cr, std::size_t c);
+double inverse_ict(double y, double cb, double cr, std::size_t c);
+
 // The scalar rows, one sample at a time as the decoder stored them before the vectorised pass:
 // the definition the rows above must meet (sample_output_test), and what they fall back to where
 // a range does not fit the vector lanes' float arithmetic exactly.

@@ -54,17 +54,52 @@ StepSize step_of(const Quantization& q, int levels, const Subband& band) {
   return q.steps[index];
 }
 
-// A tile-component's samples between the stages: int32 for the reversible path, float for 9/7.
+template <class T>
+using PlaneSamples = std::vector<T, imageio::UninitialisedAllocator<T>>;
+
+// A tile-component's samples between the stages: int32 for the reversible path, float for 9/7;
+// `wide`, int64 and double instead, for components of more than 31 bits or code-blocks deeper than
+// the int32 form holds (needs_wide_planes).
 struct Plane {
   Rect rect;  // on the (reduced) component grid
   bool reversible = true;
+  bool wide = false;
   // Uninitialised: tier-1 writes every sample, the blocks it does not decode as zeros, each
-  // block's part on the thread that decodes it (decode_blocks).
-  std::vector<std::int32_t, imageio::UninitialisedAllocator<std::int32_t>> ints;
-  std::vector<float, imageio::UninitialisedAllocator<float>> floats;
+  // block's part on the thread that decodes it (decode_blocks). One of the four is used.
+  PlaneSamples<std::int32_t> ints;
+  PlaneSamples<float> floats;
+  PlaneSamples<std::int64_t> wide_ints;
+  PlaneSamples<double> doubles;
   int width() const { return static_cast<int>(rect.width()); }
   int height() const { return static_cast<int>(rect.height()); }
+  // f(samples) with the vector in use.
+  template <class F>
+  void visit(F&& f) {
+    if (wide)
+      reversible ? f(wide_ints) : f(doubles);
+    else
+      reversible ? f(ints) : f(floats);
+  }
+  template <class F>
+  void visit(F&& f) const {
+    if (wide)
+      reversible ? f(wide_ints) : f(doubles);
+    else
+      reversible ? f(ints) : f(floats);
+  }
 };
+
+// Whether a tile-component needs 64-bit planes: samples of more than 29 bits (the int32 5/3
+// lifting adds two samples of up to 2^30 for 31-bit ones, and its coefficients outgrow 31 bits), or
+// a band whose code-blocks may start above the int32 form's kMaxTopPlane: Mb = G + epsilon_b - 1
+// (E-2) plus the ROI shift (H.1), the top plane Mb - 1 when no MSB is missing.
+bool needs_wide_planes(const TileComponentParams& params, const ComponentSize& size) {
+  if (size.precision > 29) return true;
+  const Quantization& q = params.quantization;
+  int largest_exponent = 0;  // derived quantisation (E-5) only lowers LL's exponent
+  for (const StepSize& step : q.steps) largest_exponent = std::max(largest_exponent, step.exponent);
+  return q.guard_bits + largest_exponent - 2 + params.roi_shift > kMaxTopPlane;
+}
 
 t2::ComponentGeometry geometry_of(const TileComponent& tc, int dx, int dy) {
   t2::ComponentGeometry g;
@@ -106,12 +141,13 @@ bool last_ht_set(const BlockState& st, int mb, codec::ht::HtCodewords& set) {
 }
 
 // Tier-1 (EBCOT or HT) of one code-block into `block` (w*h, every sample written), in the
-// representation of decode_code_block.
+// representation of decode_code_block, int32 or int64.
+template <class Value>
 void decode_block(const BlockState& st, int mb, int w, int h, BandOrientation orientation,
-                  const ComponentCoding& coding, std::vector<std::int32_t>& block) {
+                  const ComponentCoding& coding, std::vector<Value>& block) {
   if (!is_ht(coding)) {
     BlockCodewords cw{st.data, st.segments, st.kept_passes, mb - 1 - st.missing_msbs};
-    decode_code_block(cw, w, h, orientation, t1::BlockStyle::from_spcod(coding.block_style), block);
+    decode_code_block(cw, w, h, orientation, t1::BlockStyle::from_spcod(coding.block_style), std::span<Value>(block));
     return;
   }
   codec::ht::HtCodewords set;
@@ -120,11 +156,22 @@ void decode_block(const BlockState& st, int mb, int w, int h, BandOrientation or
     throw DecodeError("an HT code-block's cleanup pass is on bit-plane " + std::to_string(set.cleanup_plane) + " (Mb " +
                       std::to_string(mb) + ", " + std::to_string(st.missing_msbs) + " missing MSBs)");
   set.vertically_causal = t1::BlockStyle::from_spcod(coding.block_style).vertically_causal;
+  // The HT block decoder works in int32 (its cleanup plane checked above): a block of a wide
+  // plane is decoded there and widened.
+  thread_local std::vector<std::int32_t> narrow;
+  std::vector<std::int32_t>& out = [&]() -> std::vector<std::int32_t>& {
+    if constexpr (std::is_same_v<Value, std::int32_t>)
+      return block;
+    else
+      return narrow;
+  }();
+  out.resize(block.size());
   try {
-    codec::ht::decode_ht_block(set, w, h, block);
+    codec::ht::decode_ht_block(set, w, h, out);
   } catch (const codec::ht::HtDecodeError& e) {
     throw DecodeError(e.what());
   }
+  if constexpr (!std::is_same_v<Value, std::int32_t>) std::copy(out.begin(), out.end(), block.begin());
 }
 
 // Whether a code-block of a band at decomposition level `level` can reach `window` (full-resolution
@@ -144,18 +191,19 @@ struct BlockTask {
   const CodeBlock* block = nullptr;
   const BlockState* state = nullptr;
   BandOrientation orientation = BandOrientation::LL;
-  int mb = 0;            // magnitude bit-planes
-  int x = 0, y = 0;      // top-left in the plane's Mallat layout
-  float half_delta = 0;  // irreversible: half the quantisation step
-  std::int32_t roi_threshold = 0;
+  int mb = 0;             // magnitude bit-planes
+  int x = 0, y = 0;       // top-left in the plane's Mallat layout
+  double half_delta = 0;  // irreversible: half the quantisation step
+  std::int64_t roi_threshold = 0;
   bool decoded = true;  // false: no pass arrived, or the block cannot reach the window: zeros
 };
 
 // H.2: coefficients at or above 2^s (`threshold`, in the decoder's doubled representation) belong to
 // the region and were scaled up by s.
-void descale_roi(std::span<std::int32_t> block, std::int32_t threshold, int roi_shift) {
-  for (std::int32_t& v : block) {
-    const std::int32_t m = v < 0 ? -v : v;
+template <class Value>
+void descale_roi(std::span<Value> block, std::int64_t threshold, int roi_shift) {
+  for (Value& v : block) {
+    const Value m = v < 0 ? -v : v;
     if (m >= threshold) v = v < 0 ? -(m >> roi_shift) : (m >> roi_shift);
   }
 }
@@ -163,19 +211,24 @@ void descale_roi(std::span<std::int32_t> block, std::int32_t threshold, int roi_
 // A decoded w x h block's coefficients into its place in the plane, dequantised: the exact integer
 // (the half-step dropped) or the value times the quantisation step (E.1.1.2). No zeros: zero
 // coefficients are written as such, and left-out blocks by clear_block.
-void dequantise_block(std::span<const std::int32_t> block, int w, int h, const BlockTask& t, Plane& plane) {
+// An int32 block goes to an int32 or float plane, an int64 block to an int64 or double one.
+template <class Value>
+void dequantise_block(std::span<const Value> block, int w, int h, const BlockTask& t, Plane& plane) {
   const auto stride = static_cast<std::size_t>(plane.width()), width = static_cast<std::size_t>(w);
-  for (int y = 0; y < h; ++y) {
-    const std::int32_t* in = block.data() + static_cast<std::size_t>(y) * width;
-    const std::size_t at = static_cast<std::size_t>(t.y + y) * stride + static_cast<std::size_t>(t.x);
-    if (plane.reversible) {
-      std::int32_t* out = plane.ints.data() + at;
-      for (std::size_t x = 0; x < width; ++x) out[x] = in[x] / 2;
-    } else {
-      float* out = plane.floats.data() + at;
-      for (std::size_t x = 0; x < width; ++x) out[x] = static_cast<float>(in[x]) * t.half_delta;
+  plane.visit([&](auto& samples) {
+    using Sample = typename std::remove_reference_t<decltype(samples)>::value_type;
+    if constexpr (sizeof(Sample) == sizeof(Value)) {
+      const auto half_delta = static_cast<Sample>(t.half_delta);
+      for (int y = 0; y < h; ++y) {
+        const Value* in = block.data() + static_cast<std::size_t>(y) * width;
+        Sample* out = samples.data() + static_cast<std::size_t>(t.y + y) * stride + static_cast<std::size_t>(t.x);
+        if constexpr (std::is_integral_v<Sample>)
+          for (std::size_t x = 0; x < width; ++x) out[x] = in[x] / 2;
+        else
+          for (std::size_t x = 0; x < width; ++x) out[x] = static_cast<Sample>(in[x]) * half_delta;
+      }
     }
-  }
+  });
 }
 
 // Faults in the pages of a new plane before its code-blocks are decoded into it, each thread
@@ -198,13 +251,23 @@ void fault_in(void* data, std::size_t bytes, base::ThreadPool& pool) {
 // The w x h zeros of a block tier-1 leaves out.
 void clear_block(int w, int h, const BlockTask& t, Plane& plane) {
   const auto stride = static_cast<std::size_t>(plane.width()), width = static_cast<std::size_t>(w);
-  for (int y = 0; y < h; ++y) {
-    const std::size_t at = static_cast<std::size_t>(t.y + y) * stride + static_cast<std::size_t>(t.x);
-    if (plane.reversible)
-      std::fill_n(plane.ints.data() + at, width, 0);
-    else
-      std::fill_n(plane.floats.data() + at, width, 0.0f);
-  }
+  plane.visit([&](auto& samples) {
+    for (int y = 0; y < h; ++y)
+      std::fill_n(samples.data() + static_cast<std::size_t>(t.y + y) * stride + static_cast<std::size_t>(t.x), width,
+                  0);
+  });
+}
+
+// Tier-1 of one code-block in `Value`s (one buffer per worker, reused), ROI de-scaling and
+// dequantisation into its place in the plane.
+template <class Value>
+void decode_into_plane(const BlockTask& t, const ComponentCoding& coding, int roi_shift, Plane& plane) {
+  const int w = static_cast<int>(t.block->rect.width()), h = static_cast<int>(t.block->rect.height());
+  thread_local std::vector<Value> block;
+  block.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));  // tier-1 writes every sample
+  decode_block(*t.state, t.mb, w, h, t.orientation, coding, block);
+  if (t.roi_threshold) descale_roi(std::span<Value>(block), t.roi_threshold, roi_shift);
+  dequantise_block(std::span<const Value>(block), w, h, t, plane);
 }
 
 // Tier-1 and dequantisation of every code-block of a tile-component that reaches `window`, into
@@ -233,8 +296,11 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
       task.mb = params.quantization.guard_bits + step.exponent - 1 + params.roi_shift;
       const double delta =
           std::ldexp(1.0 + step.mantissa / 2048.0, size.precision + band_gain(band.orientation) - step.exponent);
-      task.half_delta = static_cast<float>(delta / 2);
-      task.roi_threshold = params.roi_shift > 0 && params.roi_shift < 30 ? (std::int32_t{2} << params.roi_shift) : 0;
+      // Rounded to float once, as the narrow plane multiplies in float.
+      task.half_delta = plane.wide ? delta / 2 : static_cast<double>(static_cast<float>(delta / 2));
+      const int most_shift = plane.wide ? kMaxWideTopPlane : kMaxTopPlane;
+      task.roi_threshold =
+          params.roi_shift > 0 && params.roi_shift <= most_shift ? (std::int64_t{2} << params.roi_shift) : 0;
       for (const Precinct& p : res.precincts)
         for (const PrecinctBand& pb : p.bands) {
           if (pb.band != static_cast<int>(bi)) continue;
@@ -254,22 +320,17 @@ void decode_blocks(const TileComponent& tc, const TileComponentParams& params, c
   const auto tier1_start = Clock::now();
   // The code-blocks of the kept resolutions tile the plane (B.5, B.7), so that each sample is
   // written by one task; should a geometry ever leave a gap, the plane is cleared first.
-  if (covered != static_cast<std::size_t>(plane.width()) * static_cast<std::size_t>(plane.height())) {
-    if (plane.reversible)
-      std::fill(plane.ints.begin(), plane.ints.end(), 0);
-    else
-      std::fill(plane.floats.begin(), plane.floats.end(), 0.0f);
-  }
+  if (covered != static_cast<std::size_t>(plane.width()) * static_cast<std::size_t>(plane.height()))
+    plane.visit([](auto& samples) { std::fill(samples.begin(), samples.end(), 0); });
   const int roi_shift = params.roi_shift;
   pool.parallel_for(tasks.size(), [&](std::size_t k) {
     const BlockTask& t = tasks[k];
     const int w = static_cast<int>(t.block->rect.width()), h = static_cast<int>(t.block->rect.height());
     if (!t.decoded) return clear_block(w, h, t, plane);
-    thread_local std::vector<std::int32_t> block;  // one per worker, reused from block to block
-    block.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));  // tier-1 writes every sample
-    decode_block(*t.state, t.mb, w, h, t.orientation, params.coding, block);
-    if (t.roi_threshold) descale_roi(block, t.roi_threshold, roi_shift);
-    dequantise_block(block, w, h, t, plane);
+    if (plane.wide)
+      decode_into_plane<std::int64_t>(t, params.coding, roi_shift, plane);
+    else
+      decode_into_plane<std::int32_t>(t, params.coding, roi_shift, plane);
   });
   times.tier1 += ms_since(tier1_start);
 }
@@ -285,6 +346,14 @@ void inverse_dwt(Plane& plane, int levels, const TileDecodeSetup& setup) {
   p.levels = levels;
   p.origin = dwt::Origin{plane.rect.x0, plane.rect.y0};
   p.levels_may_exceed_size = true;
+  if (plane.wide) {  // on the CPU alone
+    if (plane.reversible)
+      setup.wide_backend->inverse(dwt::make_span(plane.wide_ints.data(), plane.width(), plane.height()), p);
+    else
+      setup.wide_backend->inverse(dwt::make_span(plane.doubles.data(), plane.width(), plane.height()), p);
+    times.dwt += ms_since(start);
+    return;
+  }
   dwt::DwtBackend& backend = plane.reversible ? *setup.reversible_backend : *setup.irreversible_backend;
   if (plane.reversible)
     backend.inverse(dwt::make_span(plane.ints.data(), plane.width(), plane.height()), p);
@@ -348,6 +417,33 @@ class RowOutput {
     const DecodedComponent& out = image_.components[c];
     sink_->put_row(c, static_cast<std::size_t>(x - out.x0), static_cast<std::size_t>(y - out.y0), {samples, n});
   }
+  // The same for an output component of more than 31 bits (DecodedComponent::wide_samples).
+  std::int64_t* wide_row(std::size_t c, std::int64_t x, std::int64_t y, std::size_t n) const {
+    if (sink_) {
+      thread_local std::vector<std::int64_t> scratch;
+      if (scratch.size() < n) scratch.resize(n);
+      return scratch.data();
+    }
+    DecodedComponent& out = image_.components[c];
+    return out.wide_samples.data() + static_cast<std::size_t>(y - out.y0) * static_cast<std::size_t>(out.width) +
+           static_cast<std::size_t>(x - out.x0);
+  }
+  void done_wide(std::size_t c, std::int64_t x, std::int64_t y, const std::int64_t* samples, std::size_t n) const {
+    if (!sink_) return;
+    const DecodedComponent& out = image_.components[c];
+    sink_->put_row_wide(c, static_cast<std::size_t>(x - out.x0), static_cast<std::size_t>(y - out.y0), {samples, n});
+  }
+  // Row y's samples [x, x + n) of output component c, made in int64, stored as the component keeps them.
+  void put(std::size_t c, std::int64_t x, std::int64_t y, const std::int64_t* values, std::size_t n) const {
+    if (image_.components[c].precision > 31) {
+      std::int64_t* row = wide_row(c, x, y, n);
+      std::copy_n(values, n, row);
+      return done_wide(c, x, y, row, n);
+    }
+    std::int32_t* row = this->row(c, x, y, n);
+    for (std::size_t i = 0; i < n; ++i) row[i] = static_cast<std::int32_t>(values[i]);  // clamped to 31 bits
+    done(c, x, y, row, n);
+  }
   // Components 0..2's rows, all made and all output, with the same geometry.
   void done012(std::int64_t x, std::int64_t y, const OutputRows& rows, std::size_t n) const {
     if (!sink_) return;
@@ -405,18 +501,101 @@ void store_transformed(const std::array<const Plane*, 3>& planes, const std::arr
   });
 }
 
+// G.2's condition on components 0..2.
+void check_transformable(const std::vector<Plane>& planes) {
+  const Plane &p0 = planes[0], &p1 = planes[1], &p2 = planes[2];
+  if (p0.rect != p1.rect || p0.rect != p2.rect)
+    throw DecodeError("the component transform needs equal tile-components");
+  if (p0.reversible != p1.reversible || p0.reversible != p2.reversible)
+    throw DecodeError("the component transform needs components 0..2 all reversible or all irreversible");
+}
+
+// n samples of a plane's row y from x, whatever the plane holds, as T: int64 for a reversible
+// plane, double for an irreversible one.
+template <class T>
+void load_row(const Plane& plane, std::int64_t x, std::int64_t y, std::size_t n, T* out) {
+  plane.visit([&](const auto& samples) {
+    const auto* in = plane_at(samples, plane, x, y);
+    for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<T>(in[i]);
+  });
+}
+
+// store_tile for tiles with 64-bit planes or outputs of more than 31 bits: the same steps, one
+// sample at a time in int64 and double, and each transformed component in a pass of its own
+// (such images are rare; their exactness matters more than their speed).
+void store_tile_wide(const std::vector<Plane>& planes, bool mct, const Siz& siz, const std::vector<bool>& selected,
+                     DecodedImage& image, SampleSink* sink, base::ThreadPool& pool) {
+  const RowOutput output(image, sink);
+  // Row y of output component c over [area.x0, area.x1), from make(values, x, y, n).
+  auto store_rows = [&](std::size_t c, const Rect& area, const auto& make) {
+    if (area.empty()) return;
+    const auto n = static_cast<std::size_t>(area.width());
+    for_rows(area.y0, area.y1, pool, [&](std::int64_t y) {
+      thread_local std::vector<std::int64_t> values;
+      values.resize(n);
+      make(values.data(), area.x0, y, n);
+      output.put(c, area.x0, y, values.data(), n);
+    });
+  };
+  std::size_t first_plain = 0;
+  if (mct) {
+    check_transformable(planes);
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (!selected[c]) continue;
+      const WideSampleRange range = wide_sample_range(siz.components[c].precision, siz.components[c].is_signed);
+      const auto transformed = [&](std::int64_t* values, std::int64_t x, std::int64_t y, std::size_t n) {
+        auto components = [&]<class T>(std::array<std::vector<T>, 3>& rows) {
+          for (std::size_t k = 0; k < 3; ++k) {
+            rows[k].resize(n);
+            load_row(planes[k], x, y, n, rows[k].data());
+          }
+        };
+        if (planes[0].reversible) {
+          thread_local std::array<std::vector<std::int64_t>, 3> rows;
+          components(rows);
+          for (std::size_t i = 0; i < n; ++i)
+            values[i] = wide_sample(inverse_rct(rows[0][i], rows[1][i], rows[2][i], c), range);
+        } else {
+          thread_local std::array<std::vector<double>, 3> rows;
+          components(rows);
+          for (std::size_t i = 0; i < n; ++i)
+            values[i] = wide_sample(inverse_ict(rows[0][i], rows[1][i], rows[2][i], c), range);
+        }
+      };
+      store_rows(c, planes[0].rect.intersect(output_rect(image.components[c])), transformed);
+    }
+    first_plain = 3;
+  }
+  for (std::size_t c = first_plain; c < planes.size(); ++c) {
+    if (!selected[c]) continue;
+    const Plane& plane = planes[c];
+    const WideSampleRange range = wide_sample_range(siz.components[c].precision, siz.components[c].is_signed);
+    store_rows(c, plane.rect.intersect(output_rect(image.components[c])),
+               [&](std::int64_t* values, std::int64_t x, std::int64_t y, std::size_t n) {
+                 if (plane.reversible) {
+                   load_row(plane, x, y, n, values);
+                   for (std::size_t i = 0; i < n; ++i) values[i] = wide_sample(values[i], range);
+                 } else {
+                   thread_local std::vector<double> row;
+                   row.resize(n);
+                   load_row(plane, x, y, n, row.data());
+                   for (std::size_t i = 0; i < n; ++i) values[i] = wide_sample(row[i], range);
+                 }
+               });
+  }
+}
+
 // The tile's planes into the output image: components 0..2 through the inverse component
 // transform when `mct`, every selected component level-shifted and clamped; the rows on the pool.
 void store_tile(const std::vector<Plane>& planes, bool mct, const Siz& siz, const std::vector<bool>& selected,
                 DecodedImage& image, SampleSink* sink, base::ThreadPool& pool) {
+  if (std::any_of(planes.begin(), planes.end(), [](const Plane& p) { return p.wide; }))
+    return store_tile_wide(planes, mct, siz, selected, image, sink, pool);
   const RowOutput output(image, sink);
   std::size_t first_plain = 0;  // components from here on have no component transform
   if (mct) {
+    check_transformable(planes);
     const Plane &p0 = planes[0], &p1 = planes[1], &p2 = planes[2];
-    if (p0.rect != p1.rect || p0.rect != p2.rect)
-      throw DecodeError("the component transform needs equal tile-components");
-    if (p0.reversible != p1.reversible || p0.reversible != p2.reversible)
-      throw DecodeError("the component transform needs components 0..2 all reversible or all irreversible");
     std::array<const DecodedComponent*, 3> outputs{};
     OutputRanges ranges{};
     for (std::size_t c = 0; c < 3; ++c) {
@@ -513,7 +692,8 @@ double tile_working_set(const Codestream& cs, const TileParams& params, int tile
     const Rect tc = tile_component_rect(tile, size.dx, size.dy);
     if (tc.width() >= (std::int64_t{1} << 31) || tc.height() >= (std::int64_t{1} << 31))
       throw DecodeError("tile " + std::to_string(tile_index) + " is too large (a side of 2^31 samples or more)");
-    bytes += static_cast<double>(tc.width()) * static_cast<double>(tc.height()) * 4.0 / std::pow(4.0, reduce);
+    const double sample_bytes = needs_wide_planes(params.components[c], size) ? 8.0 : 4.0;
+    bytes += static_cast<double>(tc.width()) * static_cast<double>(tc.height()) * sample_bytes / std::pow(4.0, reduce);
     const CodingStyle style{coding.levels, coding.xcb, coding.ycb, coding.precincts};
     for (int r = 0; r <= coding.levels; ++r) {
       const int shift = coding.levels - r;
@@ -625,13 +805,11 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     plane.reversible = params.components[c].coding.reversible;
     const std::size_t n = static_cast<std::size_t>(plane.rect.width()) * static_cast<std::size_t>(plane.rect.height());
     const auto clear_start = Clock::now();  // allocating the plane is tier-1's
-    if (plane.reversible) {
-      imageio::resize_with_huge_pages(plane.ints, n);
-      fault_in(plane.ints.data(), n * sizeof(std::int32_t), *setup.pool);
-    } else {
-      imageio::resize_with_huge_pages(plane.floats, n);
-      fault_in(plane.floats.data(), n * sizeof(float), *setup.pool);
-    }
+    plane.wide = needs_wide_planes(params.components[c], size);
+    plane.visit([&](auto& samples) {
+      imageio::resize_with_huge_pages(samples, n);
+      fault_in(samples.data(), n * sizeof(samples[0]), *setup.pool);
+    });
     times.tier1 += ms_since(clear_start);
     decode_blocks(tc, params.components[c], size, reduce, tile_component_rect(setup.window, size.dx, size.dy), blocks,
                   plane, *setup.pool, times);

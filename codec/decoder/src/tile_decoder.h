@@ -8,6 +8,7 @@
 #include "codec/structure/tile.h"
 #include "codestream_reader.h"
 #include "dwt/backend.h"
+#include "dwt_cpu/cpu_backend.h"
 
 namespace codec::dec {
 
@@ -16,6 +17,7 @@ struct TileDecodeSetup {
   const DecodeOptions* options = nullptr;
   dwt::DwtBackend* reversible_backend = nullptr;    // CPU lifting (exact 5/3)
   dwt::DwtBackend* irreversible_backend = nullptr;  // CPU or GPU 9/7
+  dwt_cpu::CpuBackend* wide_backend = nullptr;      // both kernels on 64-bit planes (CPU only)
   std::size_t memory_budget = 0;                    // for this tile's working set
   Rect window;                                      // the part of the image wanted, on the reference grid
   std::vector<bool> selected;                       // per codestream component: output or not

@@ -51,7 +51,7 @@ struct ComponentInfo {
   int width = 0, height = 0;
   int x0 = 0, y0 = 0;  // top-left on the component's (reduced) grid
   int dx = 1, dy = 1;  // subsampling (XRsiz, YRsiz)
-  int precision = 8;   // bits, 1..31
+  int precision = 8;   // bits, 1..38
   bool is_signed = false;
 };
 
@@ -70,6 +70,8 @@ struct ImageInfo {
 
 struct DecodedComponent : ComponentInfo {
   std::vector<std::int32_t> samples;  // row-major, width * height: unsigned 0..2^precision-1, or signed
+  // Components of more than 31 bits (JPEG 2000 allows 38): their samples, `samples` then empty.
+  std::vector<std::int64_t> wide_samples;
 };
 
 struct DecodedImage {
@@ -122,7 +124,7 @@ GPUJ2K_API DecodedImage decode_file(const std::string& path, const DecodeOptions
 // Decodes into the caller's buffer. Every output component must have the view's width and height
 // (no subsampling left after decoding), there must be as many as the view's, and each sample must
 // fit the view's type (UInt8: unsigned up to 8 bits; UInt16: unsigned up to 16; Int16: signed up
-// to 16 or unsigned up to 15; Int32: any): otherwise an Error says what the image is. Returns the
+// to 16 or unsigned up to 15; Int32: up to 31 bits): otherwise an Error says what the image is. Returns the
 // warnings.
 GPUJ2K_API std::vector<std::string> decode_into(const void* data, std::size_t size, const OutputView& out,
                                                 const DecodeOptions& options = {}, DecodeReport* report = nullptr);

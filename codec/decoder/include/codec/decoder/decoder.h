@@ -63,9 +63,11 @@ struct DecodedComponent {
   int width = 0, height = 0;
   int x0 = 0, y0 = 0;  // top-left on the component's (reduced) grid
   int dx = 1, dy = 1;  // XRsiz, YRsiz
-  int precision = 8;   // 1..38 (the samples here are int32: decoding refuses more than 31 bits)
+  int precision = 8;   // 1..38
   bool is_signed = false;
-  std::vector<std::int32_t> samples;  // row-major, width * height
+  std::vector<std::int32_t> samples;  // row-major, width * height; empty when precision > 31
+  // Components of more than 31 bits (T.800 allows 38): their samples, as `samples` holds the others.
+  std::vector<std::int64_t> wide_samples;
 };
 
 struct DecodedImage {
@@ -139,6 +141,10 @@ class SampleSink {
   virtual void begin(const DecodedImage& /*geometry*/) {}
   // Samples [x, x + samples.size()) of row y of output component `component`.
   virtual void put_row(std::size_t component, std::size_t x, std::size_t y, std::span<const std::int32_t> samples) = 0;
+  // The same for a component of more than 31 bits, to a sink that takes them (decode_to refuses
+  // such an image, before decoding, for a sink that does not).
+  virtual bool takes_wide_samples() const { return false; }
+  virtual void put_row_wide(std::size_t component, std::size_t x, std::size_t y, std::span<const std::int64_t> samples);
   // The same span of row y of output components 0, 1 and 2 at once (equal sizes), as the inverse
   // component transform makes them, for a sink that interleaves them; by default three put_row.
   virtual void put_rows012(std::size_t x, std::size_t y, std::span<const std::int32_t> c0,
