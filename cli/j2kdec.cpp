@@ -31,20 +31,27 @@ namespace {
 // PGX as the conformance suite and opj_decompress use it: "PG ML +|- depth width height\n", then
 // big-endian samples of 1, 2 or 4 bytes. Depths of 33 to 38 bits (T.800 allows 38) take 8 bytes
 // each in the same layout, an extension: the suite's files and OpenJPEG's reader stop at 32.
+// `samples` after `out`'s header, each as Bytes big-endian bytes.
+template <int Bytes, class Sample>
+void put_big_endian(const std::vector<Sample>& samples, std::vector<std::uint8_t>& out) {
+  std::size_t at = out.size();
+  out.resize(at + samples.size() * Bytes);
+  for (const Sample v : samples) {
+    const auto u = static_cast<std::uint64_t>(v);
+    for (int b = Bytes - 1; b >= 0; --b) out[at++] = static_cast<std::uint8_t>(u >> (8 * b));
+  }
+}
+
 std::vector<std::uint8_t> pgx_bytes(const codec::DecodedComponent& c) {
   const std::string header = "PG ML " + std::string(c.is_signed ? "-" : "+") + " " + std::to_string(c.precision) + " " +
                              std::to_string(c.width) + " " + std::to_string(c.height) + "\n";
-  const int bytes = c.precision <= 8 ? 1 : c.precision <= 16 ? 2 : c.precision <= 32 ? 4 : 8;
   std::vector<std::uint8_t> out(header.begin(), header.end());
-  const std::size_t count = c.precision > 31 ? c.wide_samples.size() : c.samples.size();
-  out.reserve(out.size() + count * static_cast<std::size_t>(bytes));
-  auto put = [&](std::uint64_t u) {
-    for (int b = bytes - 1; b >= 0; --b) out.push_back(static_cast<std::uint8_t>(u >> (8 * b)));
-  };
   if (c.precision > 31)
-    for (const std::int64_t v : c.wide_samples) put(static_cast<std::uint64_t>(v));
+    c.precision <= 32 ? put_big_endian<4>(c.wide_samples, out) : put_big_endian<8>(c.wide_samples, out);
+  else if (c.precision <= 8)
+    put_big_endian<1>(c.samples, out);
   else
-    for (const std::int32_t v : c.samples) put(static_cast<std::uint32_t>(v));
+    c.precision <= 16 ? put_big_endian<2>(c.samples, out) : put_big_endian<4>(c.samples, out);
   return out;
 }
 

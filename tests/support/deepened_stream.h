@@ -15,8 +15,8 @@ namespace test_support {
 
 // `stream` with SIZ's component depths set to `precision` and QCD's and QCC's guard bits to
 // `guard_bits` (-1: as they are), their reversible exponents raised by `exponent_rise`.
-inline std::vector<std::uint8_t> deepened(std::vector<std::uint8_t> stream, int precision, bool is_signed, int guard_bits,
-                                   int exponent_rise) {
+inline std::vector<std::uint8_t> deepened(std::vector<std::uint8_t> stream, int precision, bool is_signed,
+                                          int guard_bits, int exponent_rise) {
   std::size_t pos = 2;  // after SOC
   bool siz = false, qcd = false;
   while (pos + 4 <= stream.size()) {
