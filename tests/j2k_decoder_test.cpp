@@ -1210,6 +1210,8 @@ std::vector<std::vector<std::uint8_t>> robustness_streams() {
   q.layers = {{codec::LayerTarget::Kind::Bytes, 900}, {codec::LayerTarget::Kind::Bytes, 2000}};
   q.order = codec::Progression::RPCL;
   out.push_back(encode(img, q));
+  // 38-bit samples: the int64 and double planes (support/deepened_stream.h).
+  out.push_back(test_support::deepened(out[0], 38, false, 7, 20));
   return out;
 }
 

@@ -26,18 +26,27 @@ inline void scale(double* t, double s, std::size_t n) {
 inline void scale_copy(const double* src, double* dst, double s, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) dst[i] = src[i] * s;
 }
+// Two's complement sums, as the int32 vector lanes wrap: a hostile stream's coefficients may
+// overflow, and must not be undefined behaviour (the decoder clamps what comes out).
+inline std::int64_t wrapping_add(std::int64_t a, std::int64_t b) {
+  return static_cast<std::int64_t>(static_cast<std::uint64_t>(a) + static_cast<std::uint64_t>(b));
+}
+inline std::int64_t wrapping_sub(std::int64_t a, std::int64_t b) {
+  return static_cast<std::int64_t>(static_cast<std::uint64_t>(a) - static_cast<std::uint64_t>(b));
+}
+
 // T.800 F.4.8.1, as predict53 / update53: the arithmetic shift is floor division.
 inline void predict53(std::int64_t* t, const std::int64_t* l, const std::int64_t* r, std::size_t n, bool inverse) {
   if (inverse)
-    for (std::size_t i = 0; i < n; ++i) t[i] += (l[i] + r[i]) >> 1;
+    for (std::size_t i = 0; i < n; ++i) t[i] = wrapping_add(t[i], wrapping_add(l[i], r[i]) >> 1);
   else
-    for (std::size_t i = 0; i < n; ++i) t[i] -= (l[i] + r[i]) >> 1;
+    for (std::size_t i = 0; i < n; ++i) t[i] = wrapping_sub(t[i], wrapping_add(l[i], r[i]) >> 1);
 }
 inline void update53(std::int64_t* t, const std::int64_t* l, const std::int64_t* r, std::size_t n, bool inverse) {
   if (inverse)
-    for (std::size_t i = 0; i < n; ++i) t[i] -= (l[i] + r[i] + 2) >> 2;
+    for (std::size_t i = 0; i < n; ++i) t[i] = wrapping_sub(t[i], wrapping_add(wrapping_add(l[i], r[i]), 2) >> 2);
   else
-    for (std::size_t i = 0; i < n; ++i) t[i] += (l[i] + r[i] + 2) >> 2;
+    for (std::size_t i = 0; i < n; ++i) t[i] = wrapping_add(t[i], wrapping_add(wrapping_add(l[i], r[i]), 2) >> 2);
 }
 
 // Every other line of a strip, as the *_lines operations of lifting_simd.h.
