@@ -14,6 +14,7 @@
 
 #include "gpuj2k/decoder.h"
 #include "gpuj2k/encoder.h"
+#include "support/deepened_stream.h"
 #include "support/external_decode.h"
 #include "support/jp2_boxes.h"
 #include "support/scratch_dir.h"
@@ -81,6 +82,30 @@ std::string error_of(const std::vector<std::uint8_t>& bytes, const gpuj2k::Outpu
     return e.what();
   }
   return "no error";
+}
+
+// Samples of 38 bits (a lossless stream deepened by its markers, support/deepened_stream.h): decode
+// gives them in wide_samples, read_info names their depth, and decode_into refuses every buffer
+// type, none of which holds them.
+TEST(ApiDecode, ThirtyEightBitSamplesComeAsInt64) {
+  const Encoded e = encode_lossless(21, 13, 1, 8);
+  const auto deep = test_support::deepened(e.j2k, 38, false, 7, 20);  // the coded planes 25 up
+  EXPECT_EQ(gpuj2k::read_info(deep.data(), deep.size()).components.at(0).precision, 38);
+  const gpuj2k::DecodedImage image = gpuj2k::decode(deep.data(), deep.size());
+  ASSERT_EQ(image.components.size(), 1u);
+  const gpuj2k::DecodedComponent& comp = image.components[0];
+  EXPECT_EQ(comp.precision, 38);
+  EXPECT_TRUE(comp.samples.empty());
+  ASSERT_EQ(comp.wide_samples.size(), 21u * 13u);
+  // Around 2^37 (the level shift) by 2^25 times the 8-bit stream's centred samples, give or take
+  // the wavelet's rounding: far from 31 bits.
+  const auto [low, high] = std::minmax_element(comp.wide_samples.begin(), comp.wide_samples.end());
+  EXPECT_LT(*low, (std::int64_t{1} << 37) - (std::int64_t{1} << 31));
+  EXPECT_GT(*high, (std::int64_t{1} << 37) + (std::int64_t{1} << 31));
+  std::vector<std::int32_t> buffer(21 * 13);
+  gpuj2k::OutputView out{buffer.data(), buffer.size() * 4, 21, 13, 1};
+  out.type = gpuj2k::SampleType::Int32;
+  EXPECT_NE(error_of(deep, out).find("38 bits"), std::string::npos) << error_of(deep, out);
 }
 
 TEST(ApiDecode, LosslessStreamsDecodeToTheirSamples) {
