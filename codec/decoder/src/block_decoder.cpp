@@ -148,23 +148,25 @@ class BlockDecoder {
     mq_ = mq;
   }
 
-  // Records that row r of the column at `w` (output row `value_row`) turned significant with the
-  // given sign: the column words, and the value at the middle of [2^plane, 2^(plane+1)), doubled.
-  void become_significant(std::uint32_t* w, int r, Value* value, unsigned negative, int plane) {
-    column::make_significant(w, grid_.stride, r, negative, style_.vertically_causal);
+  // Records that row r of the column at `w` turned significant with the given sign: the column
+  // words (its own, `word`, held by the pass until it leaves the column), and the value at the
+  // middle of [2^plane, 2^(plane+1)), doubled.
+  void become_significant(std::uint32_t& word, std::uint32_t* w, int r, Value* value, unsigned negative, int plane) {
+    column::make_significant(word, w, grid_.stride, r, negative, style_.vertically_causal);
     const Value magnitude = Value{3} << plane;  // 1.5 * 2^plane, doubled
     *value = negative ? -magnitude : magnitude;
   }
 
-  // D.3.1 on row r of the column at `w` (`column_top` its row 0 in the output): an insignificant
-  // sample with at least one significant neighbour.
+  // D.3.1 on row r of the column at `w`, whose word the pass holds in `word` (`column_top` its row 0
+  // in the output): an insignificant sample with at least one significant neighbour.
   template <class Symbols>
-  [[gnu::always_inline]] void significance_row(std::uint32_t* w, int r, Value* column_top, int plane, Symbols& s) {
-    const std::uint32_t around = *w >> (3 * r);  // reloaded: the row above may have changed it
+  [[gnu::always_inline]] void significance_row(std::uint32_t& word, std::uint32_t* w, int r, Value* column_top,
+                                               int plane, Symbols& s) {
+    const std::uint32_t around = word >> (3 * r);  // as the rows above left it
     if ((around & column::kCentre) || !(around & column::kNeighbours)) return;
-    *w |= column::visited(r);
+    word |= column::visited(r);
     if (s.even_decision(zc_[around & column::kNeighbourhood]))
-      become_significant(w, r, column_top + r * w_, s.sign(column::sign_index(w, r)), plane);
+      become_significant(word, w, r, column_top + r * w_, s.sign(column::sign_index(word, w, r)), plane);
   }
 
   // D.3.1: insignificant samples with at least one significant neighbour. A full stripe's four
@@ -188,15 +190,19 @@ class BlockDecoder {
   [[gnu::always_inline]] void significance_stripe(std::uint32_t* words, Value* top, int rows, int plane, Symbols& s) {
     for (int x = 0; x < w_; ++x) {
       std::uint32_t* w = words + x;
-      if ((*w & column::kWindow) == 0) continue;  // no significant neighbour anywhere
+      // The column's word in a register for its rows, stored once: only this column changes it
+      // (a new significance tells the neighbouring columns' words, never this one's).
+      std::uint32_t word = *w;
+      if ((word & column::kWindow) == 0) continue;  // no significant neighbour anywhere
       if constexpr (kFull) {
-        significance_row(w, 0, top + x, plane, s);
-        significance_row(w, 1, top + x, plane, s);
-        significance_row(w, 2, top + x, plane, s);
-        significance_row(w, 3, top + x, plane, s);
+        significance_row(word, w, 0, top + x, plane, s);
+        significance_row(word, w, 1, top + x, plane, s);
+        significance_row(word, w, 2, top + x, plane, s);
+        significance_row(word, w, 3, top + x, plane, s);
       } else {
-        for (int r = 0; r < rows; ++r) significance_row(w, r, top + x, plane, s);
+        for (int r = 0; r < rows; ++r) significance_row(word, w, r, top + x, plane, s);
       }
+      *w = word;
     }
   }
 
@@ -236,13 +242,14 @@ class BlockDecoder {
     }
   }
 
-  // D.3.4 on row r of the column at `w` (`column_top` its row 0 in the output), outside run-length
-  // mode: a sample neither significant nor coded by this bit-plane's significance pass.
-  [[gnu::always_inline]] void cleanup_row(std::uint32_t* w, int r, Value* column_top, int plane, MqSymbols& s) {
-    const std::uint32_t word = *w;  // reloaded: the row above may have changed it
+  // D.3.4 on row r of the column at `w`, whose word the pass holds in `word` (`column_top` its row 0
+  // in the output), outside run-length mode: a sample neither significant nor coded by this
+  // bit-plane's significance pass.
+  [[gnu::always_inline]] void cleanup_row(std::uint32_t& word, std::uint32_t* w, int r, Value* column_top, int plane,
+                                          MqSymbols& s) {
     if (word & (column::self(r) | column::visited(r))) return;
     if (s.decision(zc_[(word >> (3 * r)) & column::kNeighbourhood]))
-      become_significant(w, r, column_top + r * w_, s.sign(column::sign_index(w, r)), plane);
+      become_significant(word, w, r, column_top + r * w_, s.sign(column::sign_index(word, w, r)), plane);
   }
 
   // One stripe of the cleanup pass; only a full stripe (known at compile time) may be run-length
@@ -252,9 +259,9 @@ class BlockDecoder {
                                              MqSymbols& s) {
     for (int x = 0; x < w_; ++x) {
       std::uint32_t* w = words + x;
+      std::uint32_t word = *w;  // in a register for the column's rows, as in the significance pass
       if constexpr (kFull) {
         int r = 0;
-        const std::uint32_t word = *w;
         // Run-length mode: none of the four significant or visited, and all with the all-zero
         // neighbourhood (zero-coding context 0 in every orientation). Tested first: at low rates
         // most columns are such, and this test is the cheaper one.
@@ -262,7 +269,7 @@ class BlockDecoder {
           if (!mq.decode(cx_[t1::kRunLengthContext])) continue;  // four insignificant samples
           r = mq.decode(cx_[t1::kUniformContext]) << 1;
           r |= mq.decode(cx_[t1::kUniformContext]);
-          become_significant(w, r, top + x + r * w_, s.sign(column::sign_index(w, r)), plane);
+          become_significant(word, w, r, top + x + r * w_, s.sign(column::sign_index(word, w, r)), plane);
           ++r;
         } else if (column::all_rows_significant_or_visited(word)) {
           // Each of the four significant or coded by the significance pass: only the marks to clear.
@@ -271,24 +278,24 @@ class BlockDecoder {
         }
         switch (r) {  // the rows from r on written out: constant shifts and masks
           case 0:
-            cleanup_row(w, 0, top + x, plane, s);
+            cleanup_row(word, w, 0, top + x, plane, s);
             [[fallthrough]];
           case 1:
-            cleanup_row(w, 1, top + x, plane, s);
+            cleanup_row(word, w, 1, top + x, plane, s);
             [[fallthrough]];
           case 2:
-            cleanup_row(w, 2, top + x, plane, s);
+            cleanup_row(word, w, 2, top + x, plane, s);
             [[fallthrough]];
           case 3:
-            cleanup_row(w, 3, top + x, plane, s);
+            cleanup_row(word, w, 3, top + x, plane, s);
             break;
           default:
             break;
         }
       } else {
-        for (int r = 0; r < rows; ++r) cleanup_row(w, r, top + x, plane, s);
+        for (int r = 0; r < rows; ++r) cleanup_row(word, w, r, top + x, plane, s);
       }
-      *w &= ~column::kVisitedAll;
+      *w = word & ~column::kVisitedAll;
     }
   }
 

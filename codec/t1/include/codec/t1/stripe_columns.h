@@ -74,19 +74,24 @@ inline bool all_rows_significant_or_visited(std::uint32_t w) {
 // of the word's sign bits), of W and E in bits 5 and 7 (from the neighbouring columns' words). A
 // sign bit is only ever set with its significance. Some 13 operations where gathering the bits
 // into nibbles took twice as many: this runs once per newly significant coefficient.
-inline unsigned sign_index(const std::uint32_t* w, int r) {
-  const std::uint32_t c = w[0];
-  return ((c >> (3 * r + 1)) & 0x55u) | ((c >> (17 + r)) & 0x0Au) | ((w[-1] >> (14 + r)) & 0x20u) |
+inline unsigned sign_index(std::uint32_t centre, const std::uint32_t* w, int r) {
+  return ((centre >> (3 * r + 1)) & 0x55u) | ((centre >> (17 + r)) & 0x0Au) | ((w[-1] >> (14 + r)) & 0x20u) |
          ((w[1] >> (12 + r)) & 0x80u);
 }
+// The same with the column's own word read from `w`. The form above is for a pass that holds that
+// word in a register while it works down the column's rows, and stores it once at the end: each
+// row's decisions then wait on no store and reload of it.
+inline unsigned sign_index(const std::uint32_t* w, int r) { return sign_index(w[0], w, r); }
 
 // Marks row r of the column at `w` (in a bordered array of stripes `stride` words apart)
 // significant with the given sign, and tells the five or eight columns whose windows hold it.
 // With vertically causal contexts (D.7) row 0 stays invisible to the stripe above, whose contexts
 // must not depend on it.
-inline void make_significant(std::uint32_t* w, std::ptrdiff_t stride, int r, unsigned negative, bool causal) {
+// `centre` is the column's own word (w[0], held by the caller; see sign_index).
+inline void make_significant(std::uint32_t& centre, std::uint32_t* w, std::ptrdiff_t stride, int r, unsigned negative,
+                             bool causal) {
   const int j = r + 1;
-  w[0] |= sig(j, 1) | negative << (18 + j);
+  centre |= sig(j, 1) | negative << (18 + j);
   w[-1] |= sig(j, 2);
   w[1] |= sig(j, 0);
   if (r == 0 && !causal) {
@@ -101,6 +106,11 @@ inline void make_significant(std::uint32_t* w, std::ptrdiff_t stride, int r, uns
     below[0] |= sig(0, 1) | negative << 18;
     below[1] |= sig(0, 0);
   }
+}
+inline void make_significant(std::uint32_t* w, std::ptrdiff_t stride, int r, unsigned negative, bool causal) {
+  std::uint32_t centre = w[0];
+  make_significant(centre, w, stride, r, negative, causal);
+  w[0] = centre;
 }
 
 }  // namespace column
