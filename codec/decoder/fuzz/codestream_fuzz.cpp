@@ -19,8 +19,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size % 5 == 2) options.components = {0};
   try {
     const codec::DecodedImage image = codec::decode(std::span<const std::uint8_t>(data, size), options);
-    for (const auto& c : image.components)
-      if (c.samples.size() != static_cast<std::size_t>(c.width) * static_cast<std::size_t>(c.height)) std::abort();
+    // Each component's samples, in `samples` or (more than 31 bits) `wide_samples`, the other empty.
+    for (const auto& c : image.components) {
+      const std::size_t count = static_cast<std::size_t>(c.width) * static_cast<std::size_t>(c.height);
+      const bool wide = c.precision > 31;
+      if (c.samples.size() != (wide ? 0 : count) || c.wide_samples.size() != (wide ? count : 0)) std::abort();
+    }
   } catch (const codec::DecodeError& e) {
     if (std::string(e.what()).find('\n') != std::string::npos) std::abort();  // the one-line promise
   }
