@@ -277,12 +277,15 @@ void put_zero_rows(const Rect& area, const DecodedImage& image, int reduce, Samp
             Rect{comp.x0, comp.y0, std::int64_t{comp.x0} + comp.width, std::int64_t{comp.y0} + comp.height});
     if (rows.empty()) continue;
     const auto x = static_cast<std::size_t>(rows.x0 - comp.x0), n = static_cast<std::size_t>(rows.width());
+    const bool wide = comp.precision > 31;
+    const std::vector<std::int32_t> zeros(wide ? 0 : n, 0);
+    const std::vector<std::int64_t> wide_zeros(wide ? n : 0, 0);
     for (std::int64_t y = rows.y0; y < rows.y1; ++y) {
       const auto row = static_cast<std::size_t>(y - comp.y0);
-      if (comp.precision > 31)
-        sink.put_row_wide(c, x, row, std::vector<std::int64_t>(n, 0));
+      if (wide)
+        sink.put_row_wide(c, x, row, wide_zeros);
       else
-        sink.put_row(c, x, row, std::vector<std::int32_t>(n, 0));
+        sink.put_row(c, x, row, zeros);
     }
   }
 }

@@ -72,20 +72,23 @@ struct Plane {
   PlaneSamples<double> doubles;
   int width() const { return static_cast<int>(rect.width()); }
   int height() const { return static_cast<int>(rect.height()); }
-  // f(samples) with the vector in use.
+  // f(samples) with the vector in use (const for a const plane).
   template <class F>
   void visit(F&& f) {
-    if (wide)
-      reversible ? f(wide_ints) : f(doubles);
-    else
-      reversible ? f(ints) : f(floats);
+    visit_samples(*this, f);
   }
   template <class F>
   void visit(F&& f) const {
-    if (wide)
-      reversible ? f(wide_ints) : f(doubles);
+    visit_samples(*this, f);
+  }
+
+ private:
+  template <class Self, class F>
+  static void visit_samples(Self& plane, F& f) {
+    if (plane.wide)
+      plane.reversible ? f(plane.wide_ints) : f(plane.doubles);
     else
-      reversible ? f(ints) : f(floats);
+      plane.reversible ? f(plane.ints) : f(plane.floats);
   }
 };
 
@@ -407,9 +410,7 @@ class RowOutput {
       if (s.size() < n) s.resize(n);
       return s.data();
     }
-    DecodedComponent& out = image_.components[c];
-    return out.samples.data() + static_cast<std::size_t>(y - out.y0) * static_cast<std::size_t>(out.width) +
-           static_cast<std::size_t>(x - out.x0);
+    return sample_at(image_.components[c].samples, c, x, y);
   }
   // The row made where row() said is finished.
   void done(std::size_t c, std::int64_t x, std::int64_t y, const std::int32_t* samples, std::size_t n) const {
@@ -424,9 +425,7 @@ class RowOutput {
       if (scratch.size() < n) scratch.resize(n);
       return scratch.data();
     }
-    DecodedComponent& out = image_.components[c];
-    return out.wide_samples.data() + static_cast<std::size_t>(y - out.y0) * static_cast<std::size_t>(out.width) +
-           static_cast<std::size_t>(x - out.x0);
+    return sample_at(image_.components[c].wide_samples, c, x, y);
   }
   void done_wide(std::size_t c, std::int64_t x, std::int64_t y, const std::int64_t* samples, std::size_t n) const {
     if (!sink_) return;
@@ -453,6 +452,14 @@ class RowOutput {
   }
 
  private:
+  // Sample (x, y) of output component c (its grid's coordinates) in `samples`, its int32 or int64 ones.
+  template <class T>
+  T* sample_at(std::vector<T>& samples, std::size_t c, std::int64_t x, std::int64_t y) const {
+    const DecodedComponent& out = image_.components[c];
+    return samples.data() + static_cast<std::size_t>(y - out.y0) * static_cast<std::size_t>(out.width) +
+           static_cast<std::size_t>(x - out.x0);
+  }
+
   DecodedImage& image_;
   SampleSink* sink_;
 };
