@@ -42,18 +42,18 @@ const t1::ZeroCodingTable& zero_coding_table(BandOrientation o) {
 }
 
 // Where a pass's decisions come from: the MQ decoder with their contexts, or raw bits (D.6). The
-// pass logic is written once over these two. even_decision is for the passes whose decisions are
-// least skewed, significance propagation and refinement (MqDecoder::decode_even says why).
+// pass logic is written once over these two. The MQ decisions take MqDecoder::decode_even, which
+// has no branch on the decision (it says why); the cleanup's run-length decisions, nearly all
+// alike, take decode() directly.
 struct MqSymbols {
   MqDecoder& mq;
   Contexts& cx;
 
-  int decision(int context) { return mq.decode(cx[static_cast<std::size_t>(context)]); }
-  int even_decision(int context) { return mq.decode_even(cx[static_cast<std::size_t>(context)]); }
+  int decision(int context) { return mq.decode_even(cx[static_cast<std::size_t>(context)]); }
   // Table D.3 through t1::kSignTable: the decoded bit is the sign XOR the prediction.
   unsigned sign(unsigned sign_index) {
     const std::uint8_t entry = t1::kSignTable[sign_index];
-    return static_cast<unsigned>(mq.decode(cx[entry >> 1u])) ^ (entry & 1u);
+    return static_cast<unsigned>(mq.decode_even(cx[entry >> 1u])) ^ (entry & 1u);
   }
 };
 
@@ -61,7 +61,6 @@ struct RawSymbols {
   RawDecoder& raw;
 
   int decision(int /*context*/) { return raw.bit(); }
-  int even_decision(int /*context*/) { return raw.bit(); }
   unsigned sign(unsigned /*sign_index*/) { return static_cast<unsigned>(raw.bit()); }  // D.6: as is
 };
 
@@ -82,8 +81,10 @@ ColumnGrid clear_column_grid(int width, int height) {
 }
 
 // `Value` holds the decoded coefficients: int32 for up to kMaxTopPlane + 1 bit-planes, int64 for
-// the deeper blocks of samples over 31 bits (or large ROI shifts).
-template <class Value>
+// the deeper blocks of samples over 31 bits (or large ROI shifts). kWidth is the block's width when
+// known at compile time (0: any): the common 64-wide block then has constant row offsets, column
+// strides and loop bounds.
+template <class Value, int kWidth = 0>
 class BlockDecoder {
  public:
   BlockDecoder(int w, int h, BandOrientation o, const t1::BlockStyle& style, std::span<Value> out)
@@ -152,7 +153,7 @@ class BlockDecoder {
   // words (its own, `word`, held by the pass until it leaves the column), and the value at the
   // middle of [2^plane, 2^(plane+1)), doubled.
   void become_significant(std::uint32_t& word, std::uint32_t* w, int r, Value* value, unsigned negative, int plane) {
-    column::make_significant(word, w, grid_.stride, r, negative, style_.vertically_causal);
+    column::make_significant(word, w, stride(), r, negative, style_.vertically_causal);
     const Value magnitude = Value{3} << plane;  // 1.5 * 2^plane, doubled
     *value = negative ? -magnitude : magnitude;
   }
@@ -165,8 +166,8 @@ class BlockDecoder {
     const std::uint32_t around = word >> (3 * r);  // as the rows above left it
     if ((around & column::kCentre) || !(around & column::kNeighbours)) return;
     word |= column::visited(r);
-    if (s.even_decision(zc_[around & column::kNeighbourhood]))
-      become_significant(word, w, r, column_top + r * w_, s.sign(column::sign_index(word, w, r)), plane);
+    if (s.decision(zc_[around & column::kNeighbourhood]))
+      become_significant(word, w, r, column_top + r * width(), s.sign(column::sign_index(word, w, r)), plane);
   }
 
   // D.3.1: insignificant samples with at least one significant neighbour. A full stripe's four
@@ -175,8 +176,8 @@ class BlockDecoder {
   void significance_pass(int plane, Symbols s) {
     for (int y0 = 0; y0 < h_; y0 += 4) {
       const int rows = std::min(4, h_ - y0);
-      std::uint32_t* words = grid_.origin + (y0 / 4) * grid_.stride;
-      Value* top = out_ + static_cast<std::ptrdiff_t>(y0) * w_;
+      std::uint32_t* words = grid_.origin + (y0 / 4) * stride();
+      Value* top = out_ + static_cast<std::ptrdiff_t>(y0) * width();
       if (rows == 4)
         significance_stripe<true>(words, top, 4, plane, s);
       else
@@ -188,7 +189,7 @@ class BlockDecoder {
   // column) has its four rows written out.
   template <bool kFull, class Symbols>
   [[gnu::always_inline]] void significance_stripe(std::uint32_t* words, Value* top, int rows, int plane, Symbols& s) {
-    for (int x = 0; x < w_; ++x) {
+    for (int x = 0; x < width(); ++x) {
       std::uint32_t* w = words + x;
       // The column's word in a register for its rows, stored once: only this column changes it
       // (a new significance tells the neighbouring columns' words, never this one's).
@@ -211,7 +212,7 @@ class BlockDecoder {
   template <class Symbols>
   [[gnu::always_inline]] static void refine_row(std::uint32_t word, int r, Value* column_top, Value half, Symbols& s,
                                                 int width) {
-    const int bit = s.even_decision(t1::refinement_context(word, r));
+    const int bit = s.decision(t1::refinement_context(word, r));
     // The interval halves: its middle moves up or down by a quarter of the old width.
     Value& v = column_top[r * width];
     const Value step = bit ? half : -half;
@@ -223,9 +224,9 @@ class BlockDecoder {
   void refinement_pass(int plane, Symbols s) {
     const Value half = Value{1} << plane;
     for (int y0 = 0; y0 < h_; y0 += 4) {
-      std::uint32_t* words = grid_.origin + (y0 / 4) * grid_.stride;
-      Value* top = out_ + static_cast<std::ptrdiff_t>(y0) * w_;
-      for (int x = 0; x < w_; ++x) {
+      std::uint32_t* words = grid_.origin + (y0 / 4) * stride();
+      Value* top = out_ + static_cast<std::ptrdiff_t>(y0) * width();
+      for (int x = 0; x < width(); ++x) {
         const std::uint32_t word = words[x];  // refinement changes no significance: one load does
         // None significant, at low rates most columns: skipped before the due rows are worked out.
         if ((word & column::kSelfAll) == 0) continue;
@@ -233,10 +234,10 @@ class BlockDecoder {
         const unsigned due = column::significant_rows(word) & ~(word >> 24) & 0xFu;
         if (due == 0) continue;
         // The four rows written out: constant shifts and masks in each.
-        if (due & 1u) refine_row(word, 0, top + x, half, s, w_);
-        if (due & 2u) refine_row(word, 1, top + x, half, s, w_);
-        if (due & 4u) refine_row(word, 2, top + x, half, s, w_);
-        if (due & 8u) refine_row(word, 3, top + x, half, s, w_);
+        if (due & 1u) refine_row(word, 0, top + x, half, s, width());
+        if (due & 2u) refine_row(word, 1, top + x, half, s, width());
+        if (due & 4u) refine_row(word, 2, top + x, half, s, width());
+        if (due & 8u) refine_row(word, 3, top + x, half, s, width());
         words[x] = word | due * column::refined(0);  // refined(r) = refined(0) << r, for each due row r
       }
     }
@@ -249,7 +250,7 @@ class BlockDecoder {
                                           MqSymbols& s) {
     if (word & (column::self(r) | column::visited(r))) return;
     if (s.decision(zc_[(word >> (3 * r)) & column::kNeighbourhood]))
-      become_significant(word, w, r, column_top + r * w_, s.sign(column::sign_index(word, w, r)), plane);
+      become_significant(word, w, r, column_top + r * width(), s.sign(column::sign_index(word, w, r)), plane);
   }
 
   // One stripe of the cleanup pass; only a full stripe (known at compile time) may be run-length
@@ -257,7 +258,7 @@ class BlockDecoder {
   template <bool kFull>
   [[gnu::always_inline]] void cleanup_stripe(std::uint32_t* words, Value* top, int rows, int plane, MqDecoder& mq,
                                              MqSymbols& s) {
-    for (int x = 0; x < w_; ++x) {
+    for (int x = 0; x < width(); ++x) {
       std::uint32_t* w = words + x;
       std::uint32_t word = *w;  // in a register for the column's rows, as in the significance pass
       if constexpr (kFull) {
@@ -269,7 +270,7 @@ class BlockDecoder {
           if (!mq.decode(cx_[t1::kRunLengthContext])) continue;  // four insignificant samples
           r = mq.decode(cx_[t1::kUniformContext]) << 1;
           r |= mq.decode(cx_[t1::kUniformContext]);
-          become_significant(word, w, r, top + x + r * w_, s.sign(column::sign_index(word, w, r)), plane);
+          become_significant(word, w, r, top + x + r * width(), s.sign(column::sign_index(word, w, r)), plane);
           ++r;
         } else if (column::all_rows_significant_or_visited(word)) {
           // Each of the four significant or coded by the significance pass: only the marks to clear.
@@ -306,8 +307,8 @@ class BlockDecoder {
     MqSymbols s{mq, cx_};
     for (int y0 = 0; y0 < h_; y0 += 4) {
       const int rows = std::min(4, h_ - y0);
-      std::uint32_t* words = grid_.origin + (y0 / 4) * grid_.stride;
-      Value* top = out_ + static_cast<std::ptrdiff_t>(y0) * w_;
+      std::uint32_t* words = grid_.origin + (y0 / 4) * stride();
+      Value* top = out_ + static_cast<std::ptrdiff_t>(y0) * width();
       if (rows == 4)
         cleanup_stripe<true>(words, top, 4, plane, mq, s);
       else
@@ -320,6 +321,10 @@ class BlockDecoder {
     }
     mq_ = mq;
   }
+
+  // The block's width: kWidth where given, so that the passes' offsets are constants.
+  int width() const { return kWidth > 0 ? kWidth : w_; }
+  std::ptrdiff_t stride() const { return kWidth > 0 ? kWidth + 2 : grid_.stride; }
 
   int w_, h_;
   ColumnGrid grid_;
@@ -339,8 +344,15 @@ void decode_code_block(const BlockCodewords& block, int width, int height, BandO
   if (block.top_plane > max_top_plane)
     throw DecodeError("a code-block has " + std::to_string(block.top_plane + 1) +
                       " magnitude bit-planes; this decoder handles at most " + std::to_string(max_top_plane + 1));
-  BlockDecoder<Value> decoder(width, height, orientation, style, out);
-  decoder.run(block);
+  // 64 wide, the default and most common code-block width, with its offsets as constants: 1.7 % fewer
+  // instructions in a lossless 1024x1024 decode (892.0 M to 876.4 M, callgrind, 2026-11-28).
+  if (width == 64) {
+    BlockDecoder<Value, 64> decoder(width, height, orientation, style, out);
+    decoder.run(block);
+  } else {
+    BlockDecoder<Value> decoder(width, height, orientation, style, out);
+    decoder.run(block);
+  }
 }
 
 }  // namespace
