@@ -513,14 +513,21 @@ double code_sample(CodedTile& coded, const BlockSample& sample, const Tier1Targe
 
 }  // namespace
 
-ht::HtBlock load_ht_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params) {
+void load_ht_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params, ht::HtBlock& into) {
   const std::ptrdiff_t offset = static_cast<std::ptrdiff_t>(job.y0 * job.plane_width + job.x0);
   const auto stride = static_cast<std::ptrdiff_t>(job.plane_width);
   if (params.lossless)
     return ht::load_ht_block(
-        t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height});
-  return ht::load_ht_block(t1::FloatBlock{coded.coefficients[job.component].data() + offset, stride, job.width,
-                                          job.height, job.inverse_step});
+        t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height}, into);
+  ht::load_ht_block(t1::FloatBlock{coded.coefficients[job.component].data() + offset, stride, job.width, job.height,
+                                   job.inverse_step},
+                    into);
+}
+
+ht::HtBlock load_ht_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params) {
+  ht::HtBlock block;
+  load_ht_block(coded, job, params, block);
+  return block;
 }
 
 t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params,

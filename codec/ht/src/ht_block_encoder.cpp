@@ -91,6 +91,20 @@ void measure_bit_lengths(HtBlock& b) {
   simd::bit_lengths(b.magnitudes.data(), b.magnitudes.size(), b.lengths.data(), b.lengths_below_top.data());
 }
 
+// A reused block's buffers sized for n samples: kept as they are when they already hold n (every
+// value is overwritten by the load), so that same-sized blocks need no clearing.
+void size_buffers(HtBlock& b, int width, int height, bool with_fractions) {
+  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  b.width = width;
+  b.height = height;
+  b.magnitudes.resize(n);
+  b.negative.resize(n);
+  if (with_fractions)
+    b.fractions.resize(n);
+  else
+    b.fractions.clear();  // empty: reversible
+}
+
 }  // namespace
 
 HtBlock load_ht_block(std::span<const std::int32_t> coefficients, int width, int height,
@@ -108,32 +122,22 @@ HtBlock load_ht_block(std::span<const std::int32_t> coefficients, int width, int
   return b;
 }
 
-HtBlock load_ht_block(const t1::IntegerBlock& block) {
+void load_ht_block(const t1::IntegerBlock& block, HtBlock& b) {
   check_size(block.width, block.height);
+  size_buffers(b, block.width, block.height, false);
   const auto w = static_cast<std::size_t>(block.width);
-  const std::size_t n = w * static_cast<std::size_t>(block.height);
-  HtBlock b{block.width, block.height, std::vector<std::uint32_t>(n), std::vector<std::uint8_t>(n), {}, 0, {}, {}};
   std::uint32_t all = 0;
   for (int y = 0; y < block.height; ++y)
     all |= split_signs(block.origin + y * block.stride, w, b.magnitudes.data() + static_cast<std::size_t>(y) * w,
                        b.negative.data() + static_cast<std::size_t>(y) * w);
   b.bit_planes = static_cast<int>(std::bit_width(all));
   measure_bit_lengths(b);
-  return b;
 }
 
-HtBlock load_ht_block(const t1::FloatBlock& block) {
+void load_ht_block(const t1::FloatBlock& block, HtBlock& b) {
   check_size(block.width, block.height);
+  size_buffers(b, block.width, block.height, true);
   const auto w = static_cast<std::size_t>(block.width);
-  const std::size_t n = w * static_cast<std::size_t>(block.height);
-  HtBlock b{block.width,
-            block.height,
-            std::vector<std::uint32_t>(n),
-            std::vector<std::uint8_t>(n),
-            std::vector<std::uint8_t>(n),
-            0,
-            {},
-            {}};
   // Cold rows a plane's width apart: every line asked for up front (as t1's survey_float_block).
   constexpr std::size_t kLine = 64 / sizeof(float);
   for (int y = 0; y < block.height; ++y)
@@ -146,6 +150,17 @@ HtBlock load_ht_block(const t1::FloatBlock& block) {
   }
   b.bit_planes = static_cast<int>(std::bit_width(all));
   measure_bit_lengths(b);
+}
+
+HtBlock load_ht_block(const t1::IntegerBlock& block) {
+  HtBlock b;
+  load_ht_block(block, b);
+  return b;
+}
+
+HtBlock load_ht_block(const t1::FloatBlock& block) {
+  HtBlock b;
+  load_ht_block(block, b);
   return b;
 }
 

@@ -53,6 +53,10 @@ HtBlock load_ht_block(std::span<const std::int32_t> coefficients, int width, int
                       std::span<const std::uint8_t> fractions = {});
 HtBlock load_ht_block(const t1::IntegerBlock& block);
 HtBlock load_ht_block(const t1::FloatBlock& block);
+// The same into a block kept from an earlier load (a worker's, reused): its buffers are resized,
+// not made anew, so a block of the same size costs no allocation and no clearing.
+void load_ht_block(const t1::IntegerBlock& block, HtBlock& into);
+void load_ht_block(const t1::FloatBlock& block, HtBlock& into);
 
 // Which passes an HT block gets: the cleanup alone, or the cleanup followed by the SigProp and
 // MagRef passes of the plane below it (T.814 7.4, 7.5).
