@@ -113,42 +113,93 @@ void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const double* HWY_
   const hn::ScalableTag<double> dd;
   const hn::Rebind<std::int32_t, decltype(dd)> di;  // as many int32 lanes as doubles
   const std::size_t N = hn::Lanes(dd);
-  // Per plane p: the squares of the samples significant at p (and of the insignificant ones among
-  // lanes that have a significant one), lane by lane; and per bit length L: the squares of the
-  // values of chunks whose largest magnitude has length L, which every plane p >= L leaves whole.
-  // A chunk is visited only for the planes below its largest length, not for every plane of the
-  // block: most of a block's samples are far smaller than its largest.
   constexpr int kMaxPlanes = 32;
   using V = decltype(hn::Zero(dd));
-  HWY_ALIGN double sums[(kMaxPlanes + 1) * hn::MaxLanes(dd)] = {};
-  HWY_ALIGN double whole[(kMaxPlanes + 1) * hn::MaxLanes(dd)] = {};
   HWY_ALIGN double halves[kMaxPlanes + 1];
   for (int p = 0; p <= planes; ++p) halves[p] = p > 0 ? static_cast<double>(std::uint64_t{1} << (p - 1)) : half_at_zero;
-  const auto one = hn::Set(di, 1);
+  for (int p = 0; p <= planes; ++p) error[p] = 0;
+  // The samples in segments of up to kSegment, each in chunks of 2N lanes. A chunk counts for plane p
+  // as a whole (every sample insignificant: its values' squares) when its largest magnitude is
+  // shorter than p + 1 bits, and sample by sample otherwise; it is visited only for the planes below
+  // its largest length, not for every plane of the block (most of a block's samples are far smaller
+  // than its largest). The chunks are ordered by that length, longest first, so that the chunks of
+  // plane p are a prefix of the order: the plane's loop keeps its sums in registers and has no test
+  // per chunk.
+  constexpr std::size_t kSegment = 1024;  // samples
+  HWY_ALIGN double values[kSegment];
+  HWY_ALIGN double whole[(kMaxPlanes + 1) * hn::MaxLanes(dd)];
+  std::uint8_t longest[kSegment];
+  std::uint16_t order[kSegment];
+  const std::size_t C = 2 * N;  // a chunk: two vectors of doubles
   std::size_t i = 0;
-  for (; i + N <= n; i += N) {
-    // Magnitudes are below 2^31, so they compare and mask as int32. A significant sample leaves
-    // v - (its bits from plane p up) - half = (m mod 2^p) + offset - half, exactly (every term is a
-    // multiple of 1/256 below 2^31); an insignificant one leaves v.
-    const auto m = hn::BitCast(di, hn::LoadU(hn::RebindToUnsigned<decltype(di)>(), magnitude + i));
-    const auto value = hn::Add(hn::PromoteTo(dd, m), hn::LoadU(dd, offset + i));
-    const int longest =
-        static_cast<int>(std::bit_width(static_cast<std::uint32_t>(hn::GetLane(hn::MaxOfLanes(di, m)))));
-    for (int p = 0; p < longest; ++p) {
-      const auto mask = hn::Set(di, static_cast<std::int32_t>((std::uint32_t{1} << p) - 1));
-      const auto significant = hn::PromoteTo(dd, hn::IfThenElseZero(hn::Gt(m, mask), one));  // 1.0 or 0.0
-      const auto dropped = hn::Add(hn::PromoteTo(dd, hn::AndNot(mask, m)), hn::Set(dd, halves[p]));
-      const auto left = hn::NegMulAdd(significant, dropped, value);
-      V sum = hn::Load(dd, sums + static_cast<std::size_t>(p) * N);
-      hn::Store(hn::MulAdd(left, left, sum), dd, sums + static_cast<std::size_t>(p) * N);
+  while (i + C <= n) {
+    const std::size_t chunks = std::min(kSegment, n - i) / C;
+    std::size_t longer_than[kMaxPlanes + 2] = {};  // per length L: chunks of length L (then > L, below)
+    std::fill(whole, whole + (kMaxPlanes + 1) * N, 0.0);
+    int longest_of_all = 0;
+    for (std::size_t c = 0; c < chunks; ++c) {
+      const std::size_t at = i + c * C;
+      // Magnitudes are below 2^31, so they convert as int32.
+      const hn::RebindToUnsigned<decltype(di)> du;
+      const auto m0 = hn::BitCast(di, hn::LoadU(du, magnitude + at));
+      const auto m1 = hn::BitCast(di, hn::LoadU(du, magnitude + at + N));
+      const auto value0 = hn::Add(hn::PromoteTo(dd, m0), hn::LoadU(dd, offset + at));
+      const auto value1 = hn::Add(hn::PromoteTo(dd, m1), hn::LoadU(dd, offset + at + N));
+      hn::Store(value0, dd, values + c * C);
+      hn::Store(value1, dd, values + c * C + N);
+      const int length = static_cast<int>(
+          std::bit_width(static_cast<std::uint32_t>(hn::GetLane(hn::MaxOfLanes(di, hn::Max(m0, m1))))));
+      longest[c] = static_cast<std::uint8_t>(length);
+      ++longer_than[length];
+      longest_of_all = std::max(longest_of_all, length);
+      V w = hn::Load(dd, whole + static_cast<std::size_t>(length) * N);
+      hn::Store(hn::MulAdd(value1, value1, hn::MulAdd(value0, value0, w)), dd,
+                whole + static_cast<std::size_t>(length) * N);
     }
-    V w = hn::Load(dd, whole + static_cast<std::size_t>(longest) * N);
-    hn::Store(hn::MulAdd(value, value, w), dd, whole + static_cast<std::size_t>(longest) * N);
-  }
-  double whole_so_far = 0;
-  for (int p = 0; p <= planes; ++p) {
-    whole_so_far += hn::GetLane(hn::SumOfLanes(dd, hn::Load(dd, whole + static_cast<std::size_t>(p) * N)));
-    error[p] = hn::GetLane(hn::SumOfLanes(dd, hn::Load(dd, sums + static_cast<std::size_t>(p) * N))) + whole_so_far;
+    // Counting sort by length, longest first: chunks of length L start at start[L].
+    std::size_t start[kMaxPlanes + 2];
+    std::size_t next = 0;
+    for (int length = kMaxPlanes + 1; length >= 0; --length) {
+      start[length] = next;
+      next += longer_than[length];
+    }
+    for (std::size_t c = 0; c < chunks; ++c) order[start[longest[c]]++] = static_cast<std::uint16_t>(c * C);
+    // longer_than[p]: the chunks longer than p bits, those that plane p visits.
+    std::size_t longer = 0;
+    for (int length = kMaxPlanes + 1; length >= 0; --length) {
+      const std::size_t of_length = longer_than[length];
+      longer_than[length] = longer;
+      longer += of_length;
+    }
+    double whole_so_far = 0;
+    for (int p = 0; p <= planes; ++p) {
+      whole_so_far += hn::GetLane(hn::SumOfLanes(dd, hn::Load(dd, whole + static_cast<std::size_t>(p) * N)));
+      error[p] += whole_so_far;
+      if (p >= longest_of_all) continue;
+      // A sample of magnitude m and value v = m + offset (offset in [0, 1)) is significant at p when
+      // v >= 2^p, and leaves v - floor(v / 2^p) 2^p - half(p) = (m mod 2^p) + offset - half(p); an
+      // insignificant one leaves v. Exact in double: scaling by 2^p and the floor are exact, and
+      // every term is a multiple of 1/256 below 2^31.
+      const auto step = hn::Set(dd, static_cast<double>(std::uint64_t{1} << p));
+      const auto inverse_step = hn::Set(dd, 1.0 / static_cast<double>(std::uint64_t{1} << p));
+      const auto half = hn::Set(dd, halves[p]);
+      V sum0 = hn::Zero(dd), sum1 = hn::Zero(dd);
+      const std::size_t visited = longer_than[p];
+      auto left_of = [&](const double* at) {
+        const auto value = hn::Load(dd, at);
+        const auto above = hn::Floor(hn::Mul(value, inverse_step));
+        const auto left = hn::Sub(hn::NegMulAdd(above, step, value), half);
+        return hn::IfThenElse(hn::Ge(value, step), left, value);
+      };
+      for (std::size_t k = 0; k < visited; ++k) {
+        const double* chunk = values + order[k];
+        const auto left0 = left_of(chunk), left1 = left_of(chunk + N);
+        sum0 = hn::MulAdd(left0, left0, sum0);
+        sum1 = hn::MulAdd(left1, left1, sum1);
+      }
+      error[p] += hn::GetLane(hn::SumOfLanes(dd, hn::Add(sum0, sum1)));
+    }
+    i += chunks * C;
   }
   for (; i < n; ++i) {
     const double value = static_cast<double>(magnitude[i]) + offset[i];
