@@ -62,7 +62,7 @@ codec::SourceImage to_source(const ImageView& v) {
     codec::SourceComponent comp;
     comp.precision = bits;
     comp.is_signed = is_signed;
-    comp.samples.resize(w * h);
+    imageio::resize_with_huge_pages(comp.samples, w * h);
     for (std::size_t y = 0; y < h; ++y) {
       const std::uint8_t* row = base + c * layout.component_step + y * layout.row_stride;
       std::int32_t* dst = comp.samples.data() + y * w;

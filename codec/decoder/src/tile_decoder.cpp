@@ -814,7 +814,7 @@ void decode_tile(const Codestream& cs, const TileStream& tile_stream, const Tile
     const auto clear_start = Clock::now();  // allocating the plane is tier-1's
     plane.wide = needs_wide_planes(params.components[c], size);
     plane.visit([&](auto& samples) {
-      samples.resize(n);
+      imageio::resize_with_huge_pages(samples, n);
       fault_in(samples.data(), n * sizeof(samples[0]), *setup.pool);
     });
     times.tier1 += ms_since(clear_start);

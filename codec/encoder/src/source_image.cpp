@@ -62,7 +62,7 @@ SourceImage to_source_image(const imageio::Image& image, const std::string& path
     SourceComponent comp;
     comp.precision = image.bits_per_sample;
     comp.is_signed = image.is_signed;
-    comp.samples.resize(n);
+    imageio::resize_with_huge_pages(comp.samples, n);
     for (std::size_t i = 0; i < n; ++i) {
       const float v = image.pixels[i * static_cast<std::size_t>(image.channels) + static_cast<std::size_t>(c)];
       const auto iv = static_cast<std::int64_t>(std::llround(v));

@@ -189,10 +189,9 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
                           static_cast<std::size_t>(tile.components[c].rect.height());
     if (in_place)
       out.integers[c] = std::move(consumable->components[c].samples);
-    else if (lossless)
-      out.integers[c].resize(n);
     else
-      out.floats[c].resize(n);
+      lossless ? imageio::resize_with_huge_pages(out.integers[c], n)
+               : imageio::resize_with_huge_pages(out.floats[c], n);
   }
   const bool mct = plan.rct || plan.ict;
   const TileComponent& first = tile.components[0];
