@@ -628,6 +628,48 @@ TEST(HtBlock, FloatAndIntegerBlocksInPlaceMatchTheSpanCoder) {
   EXPECT_LE(f.passes[0].distortion_decrease, f.energy);
 }
 
+// Rate control loads each block into one block a worker keeps (load_ht_block into a reused
+// HtBlock): whatever shape, kind and content the block held before, the reused block must equal a
+// fresh load, fractions emptied for an integer block included.
+TEST(HtBlock, LoadingIntoAReusedBlockEqualsAFreshLoad) {
+  std::mt19937 rng(11);
+  const int stride = 70;
+  std::vector<std::int32_t> plane(static_cast<std::size_t>(stride * 64));
+  std::vector<float> fplane(plane.size());
+  for (std::size_t i = 0; i < plane.size(); ++i) {
+    plane[i] = static_cast<std::int32_t>(rng() % 4001) - 2000;
+    fplane[i] = static_cast<float>(plane[i]) * 0.61f;
+  }
+  auto expect_same = [](const codec::ht::HtBlock& got, const codec::ht::HtBlock& fresh, const std::string& what) {
+    EXPECT_EQ(got.width, fresh.width) << what;
+    EXPECT_EQ(got.height, fresh.height) << what;
+    EXPECT_EQ(got.bit_planes, fresh.bit_planes) << what;
+    EXPECT_EQ(got.magnitudes, fresh.magnitudes) << what;
+    EXPECT_EQ(got.negative, fresh.negative) << what;
+    EXPECT_EQ(got.fractions, fresh.fractions) << what;
+    EXPECT_EQ(got.lengths, fresh.lengths) << what;
+    EXPECT_EQ(got.lengths_below_top, fresh.lengths_below_top) << what;
+  };
+  codec::ht::HtBlock reused;
+  const struct {
+    int w, h;
+    bool floats;
+  } loads[] = {{64, 64, true}, {5, 3, true}, {64, 64, false}, {17, 9, true}, {1, 1, false}, {64, 64, true}};
+  for (const auto& l : loads) {
+    const std::string what = std::to_string(l.w) + "x" + std::to_string(l.h) + (l.floats ? " float" : " integer");
+    if (l.floats) {
+      const codec::t1::FloatBlock block{fplane.data(), stride, l.w, l.h, 1 / 0.61f};
+      codec::ht::load_ht_block(block, reused);
+      expect_same(reused, codec::ht::load_ht_block(block), what);
+    } else {
+      const codec::t1::IntegerBlock block{plane.data(), stride, l.w, l.h};
+      codec::ht::load_ht_block(block, reused);
+      expect_same(reused, codec::ht::load_ht_block(block), what);
+      EXPECT_TRUE(reused.fractions.empty()) << what;
+    }
+  }
+}
+
 // SigProp and MagRef after cleanups from every plane a block can have one from, on every shape
 // and bit-plane count.
 TEST(HtBlock, RefinementPassesDecodeExactlyOnEveryShapeAndPlane) {
