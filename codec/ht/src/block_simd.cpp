@@ -108,10 +108,17 @@ CleanupErrors CleanupErrorSums(const std::uint32_t* HWY_RESTRICT magnitude, cons
   return out;
 }
 
-void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const double* HWY_RESTRICT offset, std::size_t n,
+void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const std::uint8_t* HWY_RESTRICT fraction, std::size_t n,
                  int planes, double half_at_zero, double* HWY_RESTRICT error) {
   const hn::ScalableTag<double> dd;
   const hn::Rebind<std::int32_t, decltype(dd)> di;  // as many int32 lanes as doubles
+  const hn::Rebind<std::uint8_t, decltype(dd)> d8;
+  const auto to_units = hn::Set(dd, 1.0 / 256);
+  // Each sample's fraction below its index, as a value in [0, 1) (exact: a multiple of 1/256).
+  auto offset_at = [&](std::size_t at) {
+    return fraction ? hn::Mul(hn::PromoteTo(dd, hn::PromoteTo(di, hn::LoadU(d8, fraction + at))), to_units)
+                    : hn::Zero(dd);
+  };
   const std::size_t N = hn::Lanes(dd);
   constexpr int kMaxPlanes = 32;
   using V = decltype(hn::Zero(dd));
@@ -143,8 +150,8 @@ void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const double* HWY_
       const hn::RebindToUnsigned<decltype(di)> du;
       const auto m0 = hn::BitCast(di, hn::LoadU(du, magnitude + at));
       const auto m1 = hn::BitCast(di, hn::LoadU(du, magnitude + at + N));
-      const auto value0 = hn::Add(hn::PromoteTo(dd, m0), hn::LoadU(dd, offset + at));
-      const auto value1 = hn::Add(hn::PromoteTo(dd, m1), hn::LoadU(dd, offset + at + N));
+      const auto value0 = hn::Add(hn::PromoteTo(dd, m0), offset_at(at));
+      const auto value1 = hn::Add(hn::PromoteTo(dd, m1), offset_at(at + N));
       hn::Store(value0, dd, values + c * C);
       hn::Store(value1, dd, values + c * C + N);
       const int length = static_cast<int>(
@@ -176,8 +183,8 @@ void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const double* HWY_
       whole_so_far += hn::GetLane(hn::SumOfLanes(dd, hn::Load(dd, whole + static_cast<std::size_t>(p) * N)));
       error[p] += whole_so_far;
       if (p >= longest_of_all) continue;
-      // A sample of magnitude m and value v = m + offset (offset in [0, 1)) is significant at p when
-      // v >= 2^p, and leaves v - floor(v / 2^p) 2^p - half(p) = (m mod 2^p) + offset - half(p); an
+      // A sample of magnitude m and value v = m + offset (its fraction, in [0, 1)) is significant at p
+      // when v >= 2^p, and leaves v - floor(v / 2^p) 2^p - half(p) = (m mod 2^p) + offset - half(p); an
       // insignificant one leaves v. Exact in double: scaling by 2^p and the floor are exact, and
       // every term is a multiple of 1/256 below 2^31.
       const auto step = hn::Set(dd, static_cast<double>(std::uint64_t{1} << p));
@@ -202,7 +209,7 @@ void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const double* HWY_
     i += chunks * C;
   }
   for (; i < n; ++i) {
-    const double value = static_cast<double>(magnitude[i]) + offset[i];
+    const double value = static_cast<double>(magnitude[i]) + (fraction ? fraction[i] / 256.0 : 0.0);
     for (int p = 0; p <= planes; ++p) {
       const auto low_bits = static_cast<std::uint32_t>((std::uint64_t{1} << p) - 1);
       const double left =
@@ -388,9 +395,9 @@ std::uint32_t quantize_row(const float* row, std::size_t n, float inverse_step, 
   return HWY_DYNAMIC_DISPATCH(QuantizeRow)(row, n, inverse_step, magnitude, negative, fraction);
 }
 
-void plane_errors(const std::uint32_t* magnitude, const double* offset, std::size_t n, int planes, double half_at_zero,
-                  double* error) {
-  HWY_DYNAMIC_DISPATCH(PlaneErrors)(magnitude, offset, n, planes, half_at_zero, error);
+void plane_errors(const std::uint32_t* magnitude, const std::uint8_t* fraction, std::size_t n, int planes,
+                  double half_at_zero, double* error) {
+  HWY_DYNAMIC_DISPATCH(PlaneErrors)(magnitude, fraction, n, planes, half_at_zero, error);
 }
 
 }  // namespace codec::ht::simd

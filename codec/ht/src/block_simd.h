@@ -25,12 +25,12 @@ CleanupErrors cleanup_errors(const std::uint32_t* magnitude, const std::uint8_t*
 
 // The squared error a cleanup from each bit-plane leaves, for all planes at once (plane_statistics'
 // costliest part: a sum over samples and their planes). For each plane p = 0 .. planes:
-// error[p] = the sum over all samples of e_p^2, e_p = v = magnitude[i] + offset[i] where
-// magnitude[i] < 2^p, else (magnitude[i] mod 2^p) + offset[i] - half(p), where half(p) = 2^(p-1)
-// for p > 0 and `half_at_zero` for p = 0. `offset` holds each sample's fraction below its index (0
-// when none). Magnitudes are below 2^31, planes at most 31.
-void plane_errors(const std::uint32_t* magnitude, const double* offset, std::size_t n, int planes, double half_at_zero,
-                  double* error);
+// error[p] = the sum over all samples of e_p^2, e_p = v = magnitude[i] + fraction[i] / 256 where
+// magnitude[i] < 2^p, else (magnitude[i] mod 2^p) + fraction[i] / 256 - half(p), where half(p) =
+// 2^(p-1) for p > 0 and `half_at_zero` for p = 0. `fraction` holds each sample's fraction below its
+// index in 256ths (null: none, reversible). Magnitudes are below 2^31, planes at most 31.
+void plane_errors(const std::uint32_t* magnitude, const std::uint8_t* fraction, std::size_t n, int planes,
+                  double half_at_zero, double* error);
 
 // Per magnitude (each below 2^31), its bit length and that of the magnitude without its top bit
 // (HtBlock::lengths, lengths_below_top).

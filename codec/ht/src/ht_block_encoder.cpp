@@ -199,15 +199,9 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
   std::vector<PlaneStatistics> out(static_cast<std::size_t>(planes) + 1);
   // Errors, plane by plane over all samples in SIMD: a magnitude below 2^p leaves its whole value,
   // one at or above it its residual at p.
-  thread_local std::vector<double> offsets;  // each sample's fraction below its index
-  offsets.resize(b.magnitudes.size());
-  if (b.fractions.empty())
-    std::fill(offsets.begin(), offsets.end(), 0.0);
-  else
-    for (std::size_t i = 0; i < offsets.size(); ++i) offsets[i] = b.fractions[i] / 256.0;
   std::vector<double> errors(static_cast<std::size_t>(planes) + 1);
-  simd::plane_errors(b.magnitudes.data(), offsets.data(), b.magnitudes.size(), planes, half_interval(b, 0),
-                     errors.data());
+  simd::plane_errors(b.magnitudes.data(), b.fractions.empty() ? nullptr : b.fractions.data(), b.magnitudes.size(),
+                     planes, half_interval(b, 0), errors.data());
   for (int p = 0; p <= planes; ++p) out[static_cast<std::size_t>(p)].error = errors[static_cast<std::size_t>(p)];
   // Counts, quad by quad (T.814 7.3.1: 2x2 quads, samples outside the block insignificant). On plane
   // p a quad whose largest magnitude L has bit length l > p is significant; each of its samples of
