@@ -214,7 +214,7 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
   std::vector<ht::HtBlock> presample_blocks(presample.blocks.size());
   std::vector<std::vector<ht::PlaneStatistics>> presample_stats(presample.blocks.size()), rest_stats;
   pool.parallel_for(presample.blocks.size(), [&](std::size_t k) {
-    presample_blocks[k] = load_ht_block(coded, coded.jobs[presample.blocks[k]], params);
+    load_ht_block(coded, coded.jobs[presample.blocks[k]], params, presample_blocks[k]);
     presample_stats[k] = ht::plane_statistics(presample_blocks[k]);
   });
   // The blocks with the most coding (planes times samples) go first: the presample holds a few big

@@ -524,12 +524,6 @@ void load_ht_block(const CodedTile& coded, const BlockJob& job, const EncodePara
                     into);
 }
 
-ht::HtBlock load_ht_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params) {
-  ht::HtBlock block;
-  load_ht_block(coded, job, params, block);
-  return block;
-}
-
 t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params,
                             int magnitude_bitplanes, t1::StopRule stop) {
   stop.weight = job.weight;

@@ -132,9 +132,8 @@ CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const Cod
 t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params,
                             int magnitude_bitplanes, t1::StopRule stop = {});
 
-// A code-block loaded for the HT coder from a coded tile's kept coefficients (quantised as loaded).
-ht::HtBlock load_ht_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params);
-// The same into a block kept from an earlier load (no allocation or clearing for the same size).
+// A code-block loaded for the HT coder from a coded tile's kept coefficients (quantised as loaded),
+// into `into`: a block kept from an earlier load needs no allocation or clearing for the same size.
 void load_ht_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params, ht::HtBlock& into);
 
 // A sample of a tile's code-blocks that stands for all of them: each sampled block with the number

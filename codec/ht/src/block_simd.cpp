@@ -112,6 +112,7 @@ void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const std::uint8_t
                  int planes, double half_at_zero, double* HWY_RESTRICT error) {
   const hn::ScalableTag<double> dd;
   const hn::Rebind<std::int32_t, decltype(dd)> di;  // as many int32 lanes as doubles
+  const hn::RebindToUnsigned<decltype(di)> du;
   const hn::Rebind<std::uint8_t, decltype(dd)> d8;
   const auto to_units = hn::Set(dd, 1.0 / 256);
   // Each sample's fraction below its index, as a value in [0, 1) (exact: a multiple of 1/256).
@@ -141,13 +142,12 @@ void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const std::uint8_t
   std::size_t i = 0;
   while (i + C <= n) {
     const std::size_t chunks = std::min(kSegment, n - i) / C;
-    std::size_t longer_than[kMaxPlanes + 2] = {};  // per length L: chunks of length L (then > L, below)
+    std::size_t of_length[kMaxPlanes + 2] = {};  // chunks by the bit length of their largest magnitude
     std::fill(whole, whole + (kMaxPlanes + 1) * N, 0.0);
     int longest_of_all = 0;
     for (std::size_t c = 0; c < chunks; ++c) {
       const std::size_t at = i + c * C;
       // Magnitudes are below 2^31, so they convert as int32.
-      const hn::RebindToUnsigned<decltype(di)> du;
       const auto m0 = hn::BitCast(di, hn::LoadU(du, magnitude + at));
       const auto m1 = hn::BitCast(di, hn::LoadU(du, magnitude + at + N));
       const auto value0 = hn::Add(hn::PromoteTo(dd, m0), offset_at(at));
@@ -157,27 +157,20 @@ void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const std::uint8_t
       const int length = static_cast<int>(
           std::bit_width(static_cast<std::uint32_t>(hn::GetLane(hn::MaxOfLanes(di, hn::Max(m0, m1))))));
       longest[c] = static_cast<std::uint8_t>(length);
-      ++longer_than[length];
+      ++of_length[length];
       longest_of_all = std::max(longest_of_all, length);
       V w = hn::Load(dd, whole + static_cast<std::size_t>(length) * N);
       hn::Store(hn::MulAdd(value1, value1, hn::MulAdd(value0, value0, w)), dd,
                 whole + static_cast<std::size_t>(length) * N);
     }
-    // Counting sort by length, longest first: chunks of length L start at start[L].
-    std::size_t start[kMaxPlanes + 2];
-    std::size_t next = 0;
-    for (int length = kMaxPlanes + 1; length >= 0; --length) {
-      start[length] = next;
-      next += longer_than[length];
-    }
-    for (std::size_t c = 0; c < chunks; ++c) order[start[longest[c]]++] = static_cast<std::uint16_t>(c * C);
-    // longer_than[p]: the chunks longer than p bits, those that plane p visits.
-    std::size_t longer = 0;
-    for (int length = kMaxPlanes + 1; length >= 0; --length) {
-      const std::size_t of_length = longer_than[length];
-      longer_than[length] = longer;
-      longer += of_length;
-    }
+    // longer[L]: the chunks whose largest magnitude is longer than L bits. Plane L visits those,
+    // and in the order by length, longest first (a counting sort), the chunks of length L start there.
+    std::size_t longer[kMaxPlanes + 2];
+    longer[kMaxPlanes + 1] = 0;
+    for (int length = kMaxPlanes; length >= 0; --length) longer[length] = longer[length + 1] + of_length[length + 1];
+    std::size_t slot[kMaxPlanes + 2];
+    std::copy(longer, longer + kMaxPlanes + 2, slot);
+    for (std::size_t c = 0; c < chunks; ++c) order[slot[longest[c]]++] = static_cast<std::uint16_t>(c * C);
     double whole_so_far = 0;
     for (int p = 0; p <= planes; ++p) {
       whole_so_far += hn::GetLane(hn::SumOfLanes(dd, hn::Load(dd, whole + static_cast<std::size_t>(p) * N)));
@@ -191,7 +184,7 @@ void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const std::uint8_t
       const auto inverse_step = hn::Set(dd, 1.0 / static_cast<double>(std::uint64_t{1} << p));
       const auto half = hn::Set(dd, halves[p]);
       V sum0 = hn::Zero(dd), sum1 = hn::Zero(dd);
-      const std::size_t visited = longer_than[p];
+      const std::size_t visited = longer[p];
       auto left_of = [&](const double* at) {
         const auto value = hn::Load(dd, at);
         const auto above = hn::Floor(hn::Mul(value, inverse_step));
