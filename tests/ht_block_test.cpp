@@ -129,6 +129,7 @@ std::vector<int> vlc_bits(const std::vector<std::uint8_t>& d) {
 struct Decoded {
   std::vector<std::uint32_t> mu;
   std::vector<int> negative;
+  std::vector<char> read;  // SigProp: the samples it read a bit for
 };
 
 int exponent_of(std::uint32_t mu) {  // smallest E with 2 mu - 1 < 2^E
@@ -348,6 +349,7 @@ Decoded decode_refinement(const Decoded& cleanup, const std::vector<std::uint8_t
   Decoded out;
   out.mu.assign(cleanup.mu.size(), 0);
   out.negative = cleanup.negative;
+  out.read.assign(cleanup.mu.size(), 0);
   std::vector<int> state(cleanup.mu.size(), 0);  // 1: significant in the cleanup, 2: made so by SigProp
   for (std::size_t i = 0; i < cleanup.mu.size(); ++i) {
     state[i] = cleanup.mu[i] != 0 ? 1 : 0;
@@ -376,6 +378,7 @@ Decoded decode_refinement(const Decoded& cleanup, const std::vector<std::uint8_t
           for (int dy2 = -1; dy2 <= 1; ++dy2)
             for (int dx2 = -1; dx2 <= 1; ++dx2)
               neighbour = neighbour || ((dx2 != 0 || dy2 != 0) && significant(x + dx2, y + dy2));
+          if (neighbour) out.read[i] = 1;
           if (neighbour && sigprop.bit()) {
             state[i] = 2;
             out.mu[i] = 1;
@@ -511,7 +514,8 @@ void check_refinement(const std::vector<std::int32_t>& block, int width, int hei
     const bool in_cleanup = cleanup.mu[i] != 0;
     // SigProp: new significance and sign exact where read; what it did not read stays 0.
     const std::uint32_t sp = in_cleanup ? 0 : two.mu[i];
-    if (sp != 0 && (sp != exact || two.negative[i] != neg)) {
+    // A sample read must receive its own bit: an encoder that sent 0s would decode consistently.
+    if ((sp != 0 || two.read[i]) && (sp != exact || (sp != 0 && two.negative[i] != neg))) {
       ADD_FAILURE() << where << ": sample " << i << " SigProp gives " << (two.negative[i] ? "-" : "") << sp
                     << ", expected " << exact;
       return;

@@ -259,7 +259,7 @@ void StripeColumns(const std::uint32_t* HWY_RESTRICT stripe, std::size_t width, 
       const auto v = hn::BitCast(di, hn::LoadU(hn::RebindToUnsigned<decltype(di)>(), stripe + r * stride + x));
       const auto significant = hn::Gt(v, below_plane);  // magnitudes are below 2^31
       const auto bit = hn::And(hn::ShiftRightSame(v, p - 1), one);
-      code = hn::Or(code, hn::IfThenElseZero(significant, hn::ShiftLeftSame(hn::Add(one, hn::ShiftLeft<4>(bit)), r)));
+      code = hn::Or(code, hn::ShiftLeftSame(hn::Or(hn::IfThenElseZero(significant, one), hn::ShiftLeft<4>(bit)), r));
     }
     hn::StoreU(hn::DemoteTo(d8, code), d8, columns + x);
   }
@@ -267,10 +267,32 @@ void StripeColumns(const std::uint32_t* HWY_RESTRICT stripe, std::size_t width, 
     std::uint32_t code = 0;
     for (int r = 0; r < rows; ++r) {
       const std::uint32_t v = stripe[static_cast<std::size_t>(r) * stride + x];
-      if ((v >> p) != 0) code |= (1u | (((v >> (p - 1)) & 1u) << 4)) << r;
+      code |= (((v >> p) != 0 ? 1u : 0u) | (((v >> (p - 1)) & 1u) << 4)) << r;
     }
     columns[x] = static_cast<std::uint8_t>(code);
   }
+}
+
+void ColumnBitMasks(const std::uint8_t* HWY_RESTRICT columns, std::size_t width, std::size_t words,
+                    std::uint64_t* HWY_RESTRICT masks) {
+  std::fill(masks, masks + 8 * words, std::uint64_t{0});
+  const hn::ScalableTag<std::uint8_t> d8;
+  const std::size_t N = hn::Lanes(d8);
+  // Whole vectors where their mask bits fill whole bytes (every u8 vector but the scalar target's).
+  const std::size_t covered = N % 8 == 0 ? width / N * N : 0;
+  // Bit by bit outermost: Highway allows StoreMaskBits to write up to 8 bytes on some targets (x86
+  // writes exactly N / 8), past this bit's words into the next bit's, which are written after; the
+  // buffer has 8 bytes to spare after the last bit's (header).
+  for (int b = 0; b < 8; ++b) {
+    auto* out = reinterpret_cast<std::uint8_t*>(masks + static_cast<std::size_t>(b) * words);
+    const auto bit = hn::Set(d8, static_cast<std::uint8_t>(1u << b));
+    for (std::size_t x = 0; x < covered; x += N)
+      hn::StoreMaskBits(d8, hn::TestBit(hn::LoadU(d8, columns + x), bit), out + x / 8);
+  }
+  for (std::size_t x = covered; x < width; ++x)
+    for (int b = 0; b < 8; ++b)
+      masks[static_cast<std::size_t>(b) * words + x / 64] |= static_cast<std::uint64_t>((columns[x] >> b) & 1)
+                                                             << (x % 64);
 }
 
 std::size_t QuadCounts(const std::uint8_t* HWY_RESTRICT lengths, const std::uint8_t* HWY_RESTRICT tops,
@@ -361,6 +383,11 @@ HWY_EXPORT(CleanupErrorSums);
 HWY_EXPORT(BitLengths);
 HWY_EXPORT(StripeColumns);
 HWY_EXPORT(QuadCounts);
+HWY_EXPORT(ColumnBitMasks);
+
+void column_bit_masks(const std::uint8_t* columns, std::size_t width, std::size_t words, std::uint64_t* masks) {
+  HWY_DYNAMIC_DISPATCH(ColumnBitMasks)(columns, width, words, masks);
+}
 
 void stripe_columns(const std::uint32_t* stripe, std::size_t width, std::size_t stride, int rows, int p,
                     std::uint8_t* columns) {

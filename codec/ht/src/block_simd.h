@@ -48,10 +48,16 @@ std::size_t quad_counts(const std::uint8_t* lengths, const std::uint8_t* lengths
                         std::size_t height, int planes, std::int64_t* quads, std::int64_t* samples,
                         std::int64_t* top_sums, std::int64_t* extras);
 
-// For MagRef on plane p - 1 (p >= 1): per column of a stripe of `rows` (1..4) rows of `width`
-// magnitudes (row r at stripe + r * stride), one byte: bit r set where row r's magnitude is
-// significant at plane p (at or above 2^p), and bit 4 + r its bit p - 1 where it is.
+// For the refinement passes on plane p - 1 (p >= 1): per column of a stripe of `rows` (1..4) rows
+// of `width` magnitudes (row r at stripe + r * stride), one byte: bit r set where row r's magnitude
+// is significant at plane p (at or above 2^p), and bit 4 + r its bit p - 1 (0 for rows past `rows`).
 void stripe_columns(const std::uint32_t* stripe, std::size_t width, std::size_t stride, int rows, int p,
                     std::uint8_t* columns);
+
+// The bits of a stripe's column bytes (stripe_columns') as row masks, 64 columns a word: bit x % 64
+// of masks[b * words + x / 64] is bit b of columns[x], for x < width (every other bit 0). `words`
+// must be at least (width + 63) / 64, and `masks` must have 8 bytes to spare after its 8 * words
+// words (a vector's mask may be stored in whole words).
+void column_bit_masks(const std::uint8_t* columns, std::size_t width, std::size_t words, std::uint64_t* masks);
 
 }  // namespace codec::ht::simd

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,79 +13,9 @@
 namespace codec::ht {
 namespace {
 
-// The SigProp pass on plane q = p - 1 (T.814 7.4): stripes of four rows, each in groups of four
-// columns; in a group, column by column and top to bottom, every sample not significant in the
-// cleanup with a significant neighbour (in the cleanup, or made significant earlier in this pass:
-// the scan is causal, so those are the ones already visited) sends bit q of its magnitude; then
-// the group's newly significant samples send their signs (1: negative), in the same order.
-//
-// Within a stripe the scan is simply column by column, so the significance a sample's neighbours
-// have when it is visited lives in one byte per column (`state`, with an empty column either side):
-// bit 0 the row above the stripe (as the previous stripe left it, SigProp included), bits 1..4 the
-// stripe's rows (the cleanup's significance, raised as the scan goes), bit 5 the row below (the
-// cleanup's: not visited yet). A column none of whose samples has a neighbour is passed over with a
-// few bit operations. `columns` holds simd::stripe_columns' bytes of every stripe, one after another.
-void sigprop_pass(std::span<const std::uint32_t> m, std::span<const std::uint8_t> negative, int width, int height,
-                  int q, std::span<const std::uint8_t> columns, SigPropPacker& out, std::vector<std::size_t>& became) {
-  const auto w = static_cast<std::size_t>(width);
-  // The thread's buffers, reused from block to block, reached through plain pointers in the loops
-  // (each use of a thread_local in a shared library is a call to __tls_get_addr).
-  thread_local std::vector<std::uint8_t> state_buffer, above_buffer;
-  state_buffer.assign(w + 2, 0);
-  above_buffer.assign(w, 0);
-  std::uint8_t* const state = state_buffer.data();
-  std::uint8_t* const above = above_buffer.data();
-  // Samples made significant, written at every visit and kept where the bit is 1.
-  thread_local std::vector<std::size_t> became_buffer;
-  became_buffer.resize(w * static_cast<std::size_t>(height));
-  std::size_t* const became_at = became_buffer.data();
-  std::size_t became_count = 0;
-  for (int y0 = 0; y0 < height; y0 += 4) {
-    const int rows = std::min(4, height - y0);
-    const std::uint8_t* stripe = columns.data() + static_cast<std::size_t>(y0 / 4) * w;
-    for (std::size_t x = 0; x < w; ++x) state[x + 1] = static_cast<std::uint8_t>(above[x] | ((stripe[x] & 15) << 1));
-    if (y0 + 4 < height) {
-      const std::uint8_t* next = stripe + w;
-      for (std::size_t x = 0; x < w; ++x) state[x + 1] = static_cast<std::uint8_t>(state[x + 1] | ((next[x] & 1) << 5));
-    }
-    const unsigned stripe_rows = (1u << rows) - 1;
-    for (std::size_t x0 = 0; x0 < w; x0 += 4) {
-      const std::size_t x1 = std::min(x0 + 4, w);
-      // The group's bits (at most 16 of each kind), gathered and then put at once.
-      std::uint32_t magnitude_bits = 0, sign_bits = 0;
-      int magnitude_count = 0, sign_count = 0;
-      for (std::size_t x = x0; x < x1; ++x) {
-        unsigned column = state[x + 1];
-        const unsigned sides = state[x] | state[x + 2];
-        // Bit r: row r is insignificant and has a significant neighbour (rows r - 1 .. r + 1).
-        const unsigned around = sides | column;
-        if (((around | (around >> 1) | (around >> 2)) & ~(column >> 1) & stripe_rows) == 0) continue;
-        // Row by row without a branch (whether a sample is visited, and what it sends, depends on
-        // the data): a sample not visited sends nothing and changes nothing.
-        std::size_t i = static_cast<std::size_t>(y0) * w + x;
-        for (int r = 0; r < rows; ++r, i += w) {
-          const unsigned visited = ((~column >> (r + 1)) & 1) & ((((sides | column) >> r) & 7) != 0 ? 1u : 0u);
-          const unsigned bit = (m[i] >> q) & visited;
-          magnitude_bits |= bit << magnitude_count;
-          magnitude_count += static_cast<int>(visited);
-          column |= bit << (r + 1);
-          became_at[became_count] = i;
-          became_count += bit;
-          sign_bits |= ((negative[i] != 0 ? 1u : 0u) & bit) << sign_count;
-          sign_count += static_cast<int>(bit);
-        }
-        state[x + 1] = static_cast<std::uint8_t>(column);
-      }
-      out.put(magnitude_bits, magnitude_count);
-      out.put(sign_bits, sign_count);
-    }
-    for (std::size_t x = 0; x < w; ++x) above[x] = static_cast<std::uint8_t>((state[x + 1] >> 4) & 1);
-  }
-  became.assign(became_at, became_at + became_count);
-}
-
-// A stripe column's MagRef bits from simd::stripe_columns' byte: the bits of the significant rows,
-// top row first (lowest), packed together (bits 0..3), and how many (bits 4..6).
+// A stripe column's bits where a 4-bit row mask (bits 0..3 of the index) is set, taken from bits
+// 4..7 of the index: packed together, top row first (bits 0..3), and how many (bits 4..6). MagRef
+// indexes it with simd::stripe_columns' byte, SigProp with a group column's visited rows and bits.
 constexpr std::array<std::uint8_t, 256> kColumnBits = [] {
   std::array<std::uint8_t, 256> out{};
   for (unsigned code = 0; code < 256; ++code) {
@@ -96,6 +27,146 @@ constexpr std::array<std::uint8_t, 256> kColumnBits = [] {
   }
   return out;
 }();
+
+// Bit c of a nibble moved to bit 4c: a group's row of four columns in the column-major order of
+// its 16 samples (bit 4c + r: column c, row r).
+constexpr std::array<std::uint16_t, 16> kSpreadNibble = [] {
+  std::array<std::uint16_t, 16> out{};
+  for (unsigned n = 0; n < 16; ++n)
+    for (unsigned c = 0; c < 4; ++c) out[n] = static_cast<std::uint16_t>(out[n] | (((n >> c) & 1u) << (4 * c)));
+  return out;
+}();
+
+// The 16 samples of the group of four columns from bit x of four row masks, in scan order.
+std::uint32_t group_bits(const std::uint64_t* rows, unsigned x) {
+  std::uint32_t out = 0;
+  for (unsigned r = 0; r < 4; ++r) out |= static_cast<std::uint32_t>(kSpreadNibble[(rows[r] >> x) & 15]) << r;
+  return out;
+}
+
+// The SigProp pass on plane q = p - 1 (T.814 7.4): stripes of four rows, each in groups of four
+// columns; in a group, column by column and top to bottom, every sample not significant in the
+// cleanup with a significant neighbour (in the cleanup, or made significant earlier in this pass:
+// the scan is causal, so those are the ones already visited) sends bit q of its magnitude; then
+// the group's newly significant samples send their signs (1: negative), in the same order.
+//
+// A stripe is worked out 64 columns at a time on row masks (simd::column_bit_masks of the
+// stripe_columns bytes), not sample by sample. What the cleanup made significant is known
+// everywhere, so the samples that neighbour it are found at once. A sample made significant in
+// this pass reaches only samples visited after it: the one below it and the three in the next
+// column. Those are added and the new significance recomputed until nothing changes; since every
+// influence points forwards in the scan, that fixed point is the scan's outcome. The groups then
+// send their bits in scan order.
+void sigprop_pass(std::span<const std::uint8_t> negative, int width, int height, std::span<const std::uint8_t> columns,
+                  SigPropPacker& out, std::vector<std::size_t>& became) {
+  const auto w = static_cast<std::size_t>(width);
+  const std::size_t words = (w + 63) / 64;
+  const std::size_t stripes = (static_cast<std::size_t>(height) + 3) / 4;
+  // Per stripe, its column bytes' 8 bits as row masks (significance of rows 0..3, then their bit q),
+  // every stripe's one after another, with the 8 spare bytes column_bit_masks asks for. The thread's
+  // buffers, reused from block to block, are reached through plain pointers in the loops (each use
+  // of a thread_local in a shared library is a call to __tls_get_addr).
+  thread_local std::vector<std::uint64_t> mask_buffer, state_buffer;
+  mask_buffer.resize(stripes * 8 * words + 1);
+  std::uint64_t* const masks = mask_buffer.data();
+  for (std::size_t s = 0; s < stripes; ++s)
+    simd::column_bit_masks(columns.data() + s * w, w, words, masks + s * 8 * words);
+  // Per word: the row above the stripe as it ends up (the previous stripe's last row, SigProp
+  // included), and the stripe's newly significant samples (E) and visited samples (V) per row.
+  state_buffer.assign(9 * words, 0);
+  std::uint64_t* const above = state_buffer.data();
+  std::uint64_t* const became_rows = above + words;
+  std::uint64_t* const visited_rows = became_rows + 4 * words;
+  thread_local std::vector<std::size_t> became_buffer;
+  became_buffer.resize(w * static_cast<std::size_t>(height));
+  std::size_t* const became_at = became_buffer.data();
+  std::size_t became_count = 0;
+  const std::uint64_t last_word_columns = w % 64 == 0 ? ~std::uint64_t{0} : (std::uint64_t{1} << (w % 64)) - 1;
+  for (std::size_t s = 0; s < stripes; ++s) {
+    const std::uint64_t* const significant = masks + s * 8 * words;  // rows 0..3, `words` apart
+    const std::uint64_t* const bits = significant + 4 * words;
+    // The cleanup's significance of the row below the stripe (none below the last).
+    const std::uint64_t* const below = s + 1 < stripes ? masks + (s + 1) * 8 * words : nullptr;
+    const int rows = std::min(4, height - static_cast<int>(4 * s));
+    auto row_word = [&](const std::uint64_t* m, int r, std::size_t k) -> std::uint64_t {
+      if (r < 0) return above[k];
+      if (r >= 4) return below ? below[k] : 0;
+      return m[static_cast<std::size_t>(r) * words + k];
+    };
+    std::uint64_t carry = 0;  // newly significant samples of the previous word's last column, rows 0..3
+    for (std::size_t k = 0; k < words; ++k) {
+      const std::uint64_t columns_here = k + 1 == words ? last_word_columns : ~std::uint64_t{0};
+      // Per row: samples with a neighbour the cleanup made significant (or the row above, final),
+      // and not significant themselves; the rows past the block's last have no samples.
+      std::uint64_t candidates[4], insignificant[4], bit[4], e[4];
+      for (int r = 0; r < 4; ++r) {
+        std::uint64_t left = 0, right = 0, middle = 0;
+        for (int n = r - 1; n <= r + 1; ++n) {
+          const std::uint64_t m = row_word(significant, n, k);
+          middle |= m;
+          left |= k > 0 ? row_word(significant, n, k - 1) >> 63 : 0;
+          right |= k + 1 < words ? row_word(significant, n, k + 1) << 63 : 0;
+        }
+        const std::uint64_t around = middle | (middle << 1) | left | (middle >> 1) | right;
+        insignificant[r] = r < rows ? ~significant[static_cast<std::size_t>(r) * words + k] & columns_here : 0;
+        candidates[r] = around & insignificant[r];
+        bit[r] = bits[static_cast<std::size_t>(r) * words + k];
+        e[r] = candidates[r] & bit[r];
+      }
+      // Newly significant samples reach the sample below and the next column's three.
+      std::uint64_t v[4];
+      for (;;) {
+        bool changed = false;
+        for (int r = 0; r < 4; ++r) {
+          const std::uint64_t up = r > 0 ? e[r - 1] : 0, down = r < 3 ? e[r + 1] : 0;
+          const std::uint64_t carried = ((carry >> r) | (r > 0 ? carry >> (r - 1) : 0) | (carry >> (r + 1))) & 1;
+          const std::uint64_t reached = up | ((up | e[r] | down) << 1) | carried;
+          v[r] = candidates[r] | (reached & insignificant[r]);
+          const std::uint64_t now = v[r] & bit[r];
+          changed |= now != e[r];
+          e[r] = now;
+        }
+        if (!changed) break;
+      }
+      carry = 0;
+      for (int r = 0; r < 4; ++r) {
+        carry |= (e[r] >> 63) << r;
+        became_rows[static_cast<std::size_t>(r) * words + k] = e[r];
+        visited_rows[static_cast<std::size_t>(r) * words + k] = v[r];
+      }
+    }
+    // The groups' bits in scan order (a group lies within one word: 64 is a multiple of 4).
+    for (std::size_t x0 = 0; x0 < w; x0 += 4) {
+      const std::size_t k = x0 / 64;
+      const auto shift = static_cast<unsigned>(x0 % 64);
+      const std::uint64_t rows_v[4] = {visited_rows[k], visited_rows[words + k], visited_rows[2 * words + k],
+                                       visited_rows[3 * words + k]};
+      if ((((rows_v[0] | rows_v[1] | rows_v[2] | rows_v[3]) >> shift) & 15) == 0) continue;
+      const std::uint32_t visit = group_bits(rows_v, shift);
+      const std::uint64_t rows_b[4] = {bits[k], bits[words + k], bits[2 * words + k], bits[3 * words + k]};
+      const std::uint32_t value = group_bits(rows_b, shift) & visit;
+      std::uint32_t magnitude_bits = 0, sign_bits = 0;
+      int magnitude_count = 0, sign_count = 0;
+      for (unsigned c = 0; c < 4; ++c) {
+        const std::uint8_t entry = kColumnBits[((visit >> (4 * c)) & 15) | (((value >> (4 * c)) & 15) << 4)];
+        magnitude_bits |= static_cast<std::uint32_t>(entry & 15) << magnitude_count;
+        magnitude_count += entry >> 4;
+      }
+      for (std::uint32_t left = value; left != 0; left &= left - 1) {
+        const int j = std::countr_zero(left);
+        const std::size_t i = (4 * s + static_cast<std::size_t>(j & 3)) * w + x0 + static_cast<std::size_t>(j >> 2);
+        sign_bits |= (negative[i] != 0 ? 1u : 0u) << sign_count++;
+        became_at[became_count++] = i;
+      }
+      out.put(magnitude_bits, magnitude_count);
+      out.put(sign_bits, sign_count);
+    }
+    // The next stripe's row above: this stripe's last row, as it ends.
+    for (std::size_t k = 0; k < words; ++k)
+      above[k] = rows == 4 ? significant[3 * words + k] | became_rows[3 * words + k] : 0;
+  }
+  became.assign(became_at, became_at + became_count);
+}
 
 // The MagRef pass on plane q = p - 1 (T.814 7.5): stripes of four rows, column by column, top to
 // bottom, bit q of every sample significant in the cleanup (a magnitude at or above 2^p). Each
@@ -139,7 +210,7 @@ RefinementSegment encode_refinement(std::span<const std::uint32_t> magnitudes, s
   VlcPacker magref(VlcPacker::WithoutScup{});
   magref_pass(columns, magref);
   SigPropPacker sigprop;
-  sigprop_pass(magnitudes, negative, width, height, plane - 1, columns, sigprop, out.became_significant);
+  sigprop_pass(negative, width, height, columns, sigprop, out.became_significant);
   out.bytes = sigprop.finish();
   out.sigprop_bytes = out.bytes.size();
   const std::vector<std::uint8_t> backwards = magref.finish_without_scup();
