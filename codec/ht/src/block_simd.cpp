@@ -295,6 +295,57 @@ void ColumnBitMasks(const std::uint8_t* HWY_RESTRICT columns, std::size_t width,
                                                              << (x % 64);
 }
 
+void QuadRowAnalysis(const std::uint8_t* HWY_RESTRICT above, const std::uint8_t* HWY_RESTRICT upper,
+                     const std::uint8_t* HWY_RESTRICT lower, std::size_t quads, bool initial_row,
+                     std::uint16_t* HWY_RESTRICT index, std::uint16_t* HWY_RESTRICT exponents) {
+  const hn::ScalableTag<std::uint16_t> d;  // a lane per quad: its two columns' bytes, the left one low
+  const std::size_t N = hn::Lanes(d);
+  const auto low_byte = hn::Set(d, 0xFF), zero = hn::Zero(d), one = hn::Set(d, 1);
+  const auto pairs = [&](const std::uint8_t* bytes) {
+    return hn::LoadU(d, reinterpret_cast<const std::uint16_t*>(bytes));
+  };
+  const auto flag = [&](auto mask, int shift) {
+    return hn::IfThenElseZero(mask, hn::Set(d, static_cast<std::uint16_t>(1u << shift)));
+  };
+  for (std::size_t q = 0; q < quads; q += N) {
+    const std::size_t x = 2 * q;
+    const auto top = pairs(upper + x), bottom = pairs(lower + x);
+    // The quad's samples in the standard's order: left column top and bottom, right column.
+    const auto s0 = hn::And(top, low_byte), s1 = hn::And(bottom, low_byte);
+    const auto s2 = hn::ShiftRight<8>(top), s3 = hn::ShiftRight<8>(bottom);
+    const auto rho = hn::Or(hn::Or(flag(hn::Ne(s0, zero), 0), flag(hn::Ne(s1, zero), 1)),
+                            hn::Or(flag(hn::Ne(s2, zero), 2), flag(hn::Ne(s3, zero), 3)));
+    const auto largest = hn::Max(hn::Max(s0, s1), hn::Max(s2, s3));
+    hn::Vec<decltype(d)> context, kappa = one;
+    if (initial_row) {
+      // The quad to the left: its left column (far) and right column (near), rows y0 and y0 + 1.
+      const auto left_top = pairs(upper + x - 2), left_bottom = pairs(lower + x - 2);
+      const auto far = flag(hn::Ne(hn::And(hn::Or(left_top, left_bottom), low_byte), zero), 0);
+      context = hn::Or(far, hn::Or(flag(hn::Ne(hn::ShiftRight<8>(left_top), zero), 1),
+                                   flag(hn::Ne(hn::ShiftRight<8>(left_bottom), zero), 2)));
+    } else {
+      // Above: x0 - 1 and x0 (north), x0 + 1 and x0 + 2 (east); the column left of the quad (west).
+      const auto north = pairs(above + x - 1), east = pairs(above + x + 1);
+      const auto west = hn::And(hn::Or(pairs(upper + x - 1), pairs(lower + x - 1)), low_byte);
+      context = hn::Or(flag(hn::Ne(north, zero), 0), hn::Or(flag(hn::Ne(west, zero), 1), flag(hn::Ne(east, zero), 2)));
+      const auto above_largest = hn::Max(hn::Max(hn::And(north, low_byte), hn::ShiftRight<8>(north)),
+                                         hn::Max(hn::And(east, low_byte), hn::ShiftRight<8>(east)));
+      const auto several = hn::Ne(hn::And(rho, hn::Sub(rho, one)), zero);
+      kappa = hn::IfThenElse(several, hn::Max(one, hn::SaturatedSub(above_largest, one)), one);
+    }
+    const auto bits = hn::Max(largest, kappa);
+    const auto residual = hn::Sub(bits, kappa);
+    const auto has_residual = hn::Ne(residual, zero);
+    const auto at_top =
+        hn::IfThenElseZero(has_residual, hn::Or(hn::Or(flag(hn::Eq(s0, bits), 0), flag(hn::Eq(s1, bits), 1)),
+                                                hn::Or(flag(hn::Eq(s2, bits), 2), flag(hn::Eq(s3, bits), 3))));
+    const auto code =
+        hn::Or(hn::ShiftLeft<9>(context), hn::Or(hn::ShiftLeft<5>(rho), hn::Or(flag(has_residual, 4), at_top)));
+    hn::StoreU(code, d, index + q);
+    hn::StoreU(hn::Or(bits, hn::ShiftLeft<8>(residual)), d, exponents + q);
+  }
+}
+
 std::size_t QuadCounts(const std::uint8_t* HWY_RESTRICT lengths, const std::uint8_t* HWY_RESTRICT tops,
                        std::size_t width, std::size_t height, int planes, std::int64_t* HWY_RESTRICT quads,
                        std::int64_t* HWY_RESTRICT samples, std::int64_t* HWY_RESTRICT top_sums,
@@ -384,6 +435,12 @@ HWY_EXPORT(BitLengths);
 HWY_EXPORT(StripeColumns);
 HWY_EXPORT(QuadCounts);
 HWY_EXPORT(ColumnBitMasks);
+HWY_EXPORT(QuadRowAnalysis);
+
+void quad_row_analysis(const std::uint8_t* above, const std::uint8_t* upper, const std::uint8_t* lower,
+                       std::size_t quads, bool initial_row, std::uint16_t* index, std::uint16_t* exponents) {
+  HWY_DYNAMIC_DISPATCH(QuadRowAnalysis)(above, upper, lower, quads, initial_row, index, exponents);
+}
 
 void column_bit_masks(const std::uint8_t* columns, std::size_t width, std::size_t words, std::uint64_t* masks) {
   HWY_DYNAMIC_DISPATCH(ColumnBitMasks)(columns, width, words, masks);

@@ -60,4 +60,20 @@ void stripe_columns(const std::uint32_t* stripe, std::size_t width, std::size_t 
 // words (a vector's mask may be stored in whole words).
 void column_bit_masks(const std::uint8_t* columns, std::size_t width, std::size_t words, std::uint64_t* masks);
 
+// The cleanup pass' analysis of one row of quads (T.814 7.3), from the magnitude exponents E_n of
+// its two rows of samples (`upper`, `lower`: the exponent of column x at [x]) and of the row above
+// (`above`; unused in the first row of quads), each readable from column -2 to 2 * quads + 1 (0
+// outside the block) and further: up to kQuadRowOverread bytes past that. Per quad q, the quad
+// at columns 2q and 2q + 1:
+//   index[q] = context << 9 | rho << 5 | (u_q > 0) << 4 | at_top: its context c_q (7.3.5), its
+//     significance pattern rho (bit n: sample n, in the standard's order 7.3.1), whether it has a
+//     residual and, if so, which samples' exponents equal U_q (the EMB patterns may imply their
+//     top bit), as VlcEncodingTable indexes its codewords;
+//   exponents[q] = U_q | u_q << 8: the exponent bound and the residual U_q - kappa_q (7.3.7).
+// Writes up to kQuadRowOverwrite entries past `quads` in each output.
+inline constexpr std::size_t kQuadRowOverread = 512;
+inline constexpr std::size_t kQuadRowOverwrite = 256;
+void quad_row_analysis(const std::uint8_t* above, const std::uint8_t* upper, const std::uint8_t* lower,
+                       std::size_t quads, bool initial_row, std::uint16_t* index, std::uint16_t* exponents);
+
 }  // namespace codec::ht::simd

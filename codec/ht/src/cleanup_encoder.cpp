@@ -9,6 +9,7 @@
 
 #include "bit_packers.h"
 #include "block_geometry.h"
+#include "block_simd.h"
 #include "vlc_encoding.h"
 
 namespace codec::ht {
@@ -53,29 +54,8 @@ class SampleGrid {
       for (int x = 0; x < width; ++x) cells[x] = exponent(length[x], below_top[x], p);
     }
   }
-  // x in -2 .. width + 1, y in -1 .. height.
-  int exponent_at(int x, int y) const { return cells_[cell(x, y)]; }
   // The cell of (x, y), the cells of its row's next samples following it.
   const std::uint8_t* cells_at(int x, int y) const { return cells_ + cell(x, y); }
-  int significant(int x, int y) const { return exponent_at(x, y) != 0 ? 1 : 0; }
-  // Whether the 4x2 samples from (x0, y0) are all insignificant: a pair of quads (the border
-  // stands in for samples past the block's edges).
-  bool pair_empty(int x0, int y0) const {
-    std::uint32_t upper, lower;
-    std::memcpy(&upper, cells_ + cell(x0, y0), sizeof upper);
-    std::memcpy(&lower, cells_ + cell(x0, y0 + 1), sizeof lower);
-    return (upper | lower) == 0;
-  }
-  // The four exponents of the quad at (x0, y0) as the bytes of one word, in the standard's sample
-  // order (T.814 7.3.1: left column top, left column bottom, right column top, right column
-  // bottom), the first lowest.
-  std::uint32_t quad_exponents(int x0, int y0) const {
-    std::uint16_t upper, lower;
-    std::memcpy(&upper, cells_ + cell(x0, y0), sizeof upper);
-    std::memcpy(&lower, cells_ + cell(x0, y0 + 1), sizeof lower);
-    return (upper & 0xFFu) | ((lower & 0xFFu) << 8) | (static_cast<std::uint32_t>(upper >> 8) << 16) |
-           (static_cast<std::uint32_t>(lower >> 8) << 24);
-  }
   // v_n = 2 (mu - 1) + s (T.814 7.3.8), for a significant sample.
   std::uint32_t magsgn_value(int x, int y) const {
     const std::size_t i = index(x, y);
@@ -88,9 +68,9 @@ class SampleGrid {
     return buffer;
   }
   static constexpr std::size_t kBorder = 2;
-  // pair_empty reads four cells from a lone last quad's x0, one past the right border when the
-  // width is odd: the next row's (zero) left border, or for the bottom border row these bytes.
-  static constexpr std::size_t kPairOverread = 4;
+  // simd::quad_row_analysis reads whole vectors of cells past a row's last quad: the next rows',
+  // or for the last row these bytes.
+  static constexpr std::size_t kPairOverread = simd::kQuadRowOverread;
   std::size_t index(int x, int y) const {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
   }
@@ -110,88 +90,10 @@ class SampleGrid {
 struct QuadCoding {
   int x0 = 0, y0 = 0;     // top-left sample
   int rho = 0;            // significance pattern
-  int context = 0;        // c_q
   int exponent_bits = 0;  // U_q: bits of each significant sample's v_n, before the EMB saving
   int residual = 0;       // u_q = U_q - kappa_q
   VlcCode code;           // the CxtVLC codeword, with its e_k pattern
 };
-
-// Context c_q of a quad in the first row of quads (T.814 7.3.5): from the four samples of the quad
-// to its left.
-[[gnu::always_inline]] inline int initial_row_context(const SampleGrid& g, int x0) {
-  const int far = g.significant(x0 - 2, 0) | g.significant(x0 - 2, 1);
-  return far | (g.significant(x0 - 1, 0) << 1) | (g.significant(x0 - 1, 1) << 2);
-}
-
-// The exponents of the four samples above a quad (x0 - 1 .. x0 + 2 on row y0 - 1), as bytes of one
-// word, the leftmost first: what a quad outside the first row takes its context and exponent
-// predictor from, read at once.
-struct RowAbove {
-  std::uint8_t e[4];
-};
-[[gnu::always_inline]] inline RowAbove row_above(const SampleGrid& g, int x0, int y0) {
-  RowAbove out;
-  std::memcpy(out.e, g.cells_at(x0 - 1, y0 - 1), sizeof out.e);
-  return out;
-}
-
-// Context c_q of a quad in any other row: from the row above (x0 - 1 .. x0 + 2) and the two
-// samples to its left.
-[[gnu::always_inline]] inline int other_row_context(const SampleGrid& g, const RowAbove& above, int x0, int y0) {
-  const int north = (above.e[0] | above.e[1]) != 0 ? 1 : 0;
-  const int east = (above.e[2] | above.e[3]) != 0 ? 1 : 0;
-  const int west = g.significant(x0 - 1, y0) | g.significant(x0 - 1, y0 + 1);
-  return north | (west << 1) | (east << 2);
-}
-
-// Exponent predictor kappa_q (T.814 7.3.7): 1 in the first row of quads; elsewhere, for a quad
-// with more than one significant sample, the largest exponent among the four samples above it
-// (x0 - 1 .. x0 + 2) less one, and at least 1.
-int exponent_predictor(const RowAbove& above, int rho) {
-  const bool several = (rho & (rho - 1)) != 0;
-  if (!several) return 1;
-  const int largest = std::max(std::max(above.e[0], above.e[1]), std::max(above.e[2], above.e[3]));
-  return std::max(1, largest - 1);
-}
-
-// Bit 7 of each byte of `word` set where that byte is not 0, every other bit clear.
-constexpr std::uint32_t nonzero_bytes(std::uint32_t word) {
-  return (((word & 0x7F7F7F7Fu) + 0x7F7F7F7Fu) | word) & 0x80808080u;
-}
-// Bit 7 of byte n of `flags` (nonzero_bytes') as bit n of four: a multiply moves each to bit 24 + n
-// (the other products land on distinct bits outside 24..27).
-constexpr int byte_flags(std::uint32_t flags) {
-  return static_cast<int>((((flags & 0x80808080u) >> 7) * 0x01020408u) >> 24 & 0xFu);
-}
-static_assert(byte_flags(nonzero_bytes(0x00050000u)) == 4 && byte_flags(nonzero_bytes(0x01000100u)) == 10 &&
-              byte_flags(~nonzero_bytes(0x00010203u ^ 0x03030303u)) == 1);
-
-// Fills `q` where it lives: a QuadCoding returned by value was written field by field and then
-// copied with wide loads, which stalled on store forwarding (a tenth of the cleanup's time).
-void analyse_quad(const SampleGrid& g, const VlcEncodingTable& table, int qx, int qy, QuadCoding& q) {
-  q = QuadCoding{};
-  q.x0 = 2 * qx;
-  q.y0 = 2 * qy;
-  // Bit tricks on the word of the four exponents, without a branch (the data decides them all).
-  const std::uint32_t e = g.quad_exponents(q.x0, q.y0);
-  q.rho = byte_flags(nonzero_bytes(e));
-  const int largest =
-      static_cast<int>(std::max(std::max(e & 0xFF, (e >> 8) & 0xFF), std::max((e >> 16) & 0xFF, e >> 24)));
-  int kappa = 1;
-  if (qy == 0) {
-    q.context = initial_row_context(g, q.x0);
-  } else {
-    const RowAbove above = row_above(g, q.x0, q.y0);
-    q.context = other_row_context(g, above, q.x0, q.y0);
-    kappa = exponent_predictor(above, q.rho);
-  }
-  q.exponent_bits = std::max(largest, kappa);
-  q.residual = q.exponent_bits - kappa;
-  // The samples whose exponent reaches U_q: the EMB patterns may imply their top bit.
-  const int at_top =
-      q.residual > 0 ? byte_flags(~nonzero_bytes(e ^ (static_cast<std::uint32_t>(q.exponent_bits) * 0x01010101u))) : 0;
-  if (q.rho != 0 || q.context != 0) q.code = table.lookup(q.context, q.rho, q.residual > 0, at_top);
-}
 
 // The unsigned residual u_q as U-VLC (T.814 7.3.6): a prefix of 1 to 3 bits, a suffix of 0, 1 or
 // 5 bits and, for the largest values, a 4-bit extension; u = prefix value + suffix + 4 extension.
@@ -334,24 +236,29 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
   MagSgnPacker magsgn;
   MelEncoder mel;
   VlcPacker vlc;
+  // Each row of quads is analysed at once (simd::quad_row_analysis); the loop below only emits.
+  thread_local std::vector<std::uint16_t> index_buffer, exponent_buffer;
+  index_buffer.resize(static_cast<std::size_t>(quads_wide) + simd::kQuadRowOverwrite);
+  exponent_buffer.resize(static_cast<std::size_t>(quads_wide) + simd::kQuadRowOverwrite);
+  std::uint16_t* const indices = index_buffer.data();
+  std::uint16_t* const exponents = exponent_buffer.data();
   for (int qy = 0; qy < quads_high; ++qy) {
     const bool initial_row = qy == 0;
     const VlcEncodingTable& table = vlc_encoding_table(initial_row ? QuadRowKind::Initial : QuadRowKind::Other);
+    simd::quad_row_analysis(grid.cells_at(0, 2 * qy - 1), grid.cells_at(0, 2 * qy), grid.cells_at(0, 2 * qy + 1),
+                            static_cast<std::size_t>(quads_wide), initial_row, indices, exponents);
     // Quads go in pairs (T.814 7.3.1): both quads' significance, then their residuals, then MagSgn.
     for (int qx = 0; qx < quads_wide; qx += 2) {
       const int count = std::min(2, quads_wide - qx);
-      if (grid.pair_empty(2 * qx, 2 * qy)) {
+      const std::uint16_t* index = indices + qx;
+      if (((index[0] | (count == 2 ? index[1] : 0)) & VlcEncodingTable::kRhoBits) == 0) {
         // Neither quad has a significant sample: each sends its context's codeword for rho = 0, or
-        // a MEL 0 in context 0, and no residual or MagSgn bit (what analyse_quad and the steps
-        // below give for rho = 0, without them: most quads of a low-rate cleanup are empty).
+        // a MEL 0 in context 0, and no residual or MagSgn bit (most quads of a low-rate cleanup).
         for (int k = 0; k < count; ++k) {
-          const int x0 = 2 * (qx + k);
-          const int context = initial_row ? initial_row_context(grid, x0)
-                                          : other_row_context(grid, row_above(grid, x0, 2 * qy), x0, 2 * qy);
-          if (context == 0) {
+          if (index[k] == 0) {
             mel.encode(false);
           } else {
-            const VlcCode code = table.lookup(context, 0, false, 0);
+            const VlcCode& code = table.at(index[k]);
             vlc.put(code.codeword, code.length);
           }
         }
@@ -360,10 +267,20 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
       std::array<QuadCoding, 2> quads;
       for (int k = 0; k < count; ++k) {
         QuadCoding& q = quads[static_cast<std::size_t>(k)];
-        analyse_quad(grid, table, qx + k, qy, q);
+        q.x0 = 2 * (qx + k);
+        q.y0 = 2 * qy;
+        q.rho = VlcEncodingTable::rho_of(index[k]);
+        q.exponent_bits = exponents[qx + k] & 0xFF;
+        q.residual = exponents[qx + k] >> 8;
         // Context 0: the MEL says whether the quad has any significant sample (T.814 7.3.4).
-        if (q.context == 0) mel.encode(q.rho != 0);
-        if (q.context != 0 || q.rho != 0) vlc.put(q.code.codeword, q.code.length);
+        const bool in_context_zero = VlcEncodingTable::context_of(index[k]) == 0;
+        if (in_context_zero) mel.encode(q.rho != 0);
+        if (!in_context_zero || q.rho != 0) {
+          q.code = table.at(index[k]);
+          vlc.put(q.code.codeword, q.code.length);
+        } else {
+          q.code = VlcCode{};
+        }
       }
       encode_pair_residuals(quads.data(), count, initial_row, mel, vlc);
       for (int k = 0; k < count; ++k) put_magsgn(grid, quads[static_cast<std::size_t>(k)], magsgn);

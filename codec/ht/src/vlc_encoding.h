@@ -22,11 +22,17 @@ class VlcEncodingTable {
   VlcCode lookup(int context, int rho, bool has_residual, int at_top) const {
     return codes_[index(context, rho, has_residual, has_residual ? at_top : 0)];
   }
-
- private:
-  static std::size_t index(int context, int rho, bool has_residual, int at_top) {
+  // The codes by index (simd::quad_row_analysis computes the indices): context << 9 | rho << 5 |
+  // has_residual << 4 | at_top, at_top 0 without a residual.
+  static constexpr std::size_t index(int context, int rho, bool has_residual, int at_top) {
     return static_cast<std::size_t>((((context << 4 | rho) << 1 | (has_residual ? 1 : 0)) << 4) | at_top);
   }
+  const VlcCode& at(std::size_t index) const { return codes_[index]; }
+  static constexpr unsigned kRhoBits = 15u << 5;
+  static constexpr int rho_of(std::size_t index) { return static_cast<int>((index >> 5) & 15); }
+  static constexpr int context_of(std::size_t index) { return static_cast<int>(index >> 9); }
+
+ private:
   std::array<VlcCode, 8 * 16 * 2 * 16> codes_{};
 };
 
