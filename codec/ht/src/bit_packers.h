@@ -117,6 +117,20 @@ class MelEncoder {
     run_ = 0;
     if (state_ > 0) --state_;
   }
+  // `count` 0 symbols, as many calls of encode(false) would code them.
+  void encode_zeros(int count) {
+    while (count > 0) {
+      const int room = (1 << kExponent[state_]) - run_;
+      if (count < room) {
+        run_ += count;
+        return;
+      }
+      count -= room;
+      packer_.put_bit(1);
+      run_ = 0;
+      if (state_ < 12) ++state_;
+    }
+  }
   // A pending run is closed with a 1 (a full run): the decoder reads zeros past the last symbol
   // it needs, which it never uses.
   MelPacker& finish() {

@@ -249,6 +249,17 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
                             static_cast<std::size_t>(quads_wide), initial_row, indices, exponents);
     // Quads go in pairs (T.814 7.3.1): both quads' significance, then their residuals, then MagSgn.
     for (int qx = 0; qx < quads_wide; qx += 2) {
+      // Runs of empty quads in context 0, four at a time: MEL 0s alone (most of a low-rate cleanup).
+      int empty = 0;
+      for (std::uint64_t four; qx + empty + 4 <= quads_wide; empty += 4) {
+        std::memcpy(&four, indices + qx + empty, sizeof four);
+        if (four != 0) break;
+      }
+      if (empty > 0) {
+        mel.encode_zeros(empty);
+        qx += empty;
+        if (qx >= quads_wide) break;
+      }
       const int count = std::min(2, quads_wide - qx);
       const std::uint16_t* index = indices + qx;
       if (((index[0] | (count == 2 ? index[1] : 0)) & VlcEncodingTable::kRhoBits) == 0) {
