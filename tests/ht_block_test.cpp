@@ -771,7 +771,11 @@ TEST(HtBlock, PlaneStatisticsMatchTheirDefinitions) {
         ASSERT_EQ(got.size(), want.size());
         for (std::size_t p = 0; p < want.size(); ++p) {
           SCOPED_TRACE("plane " + std::to_string(p));
-          EXPECT_NEAR(got[p].error, want[p].error, 1e-12 * std::max(1.0, want.back().error));
+          // The energy (nothing coded) exactly; the other planes' errors are estimates summed in
+          // float (simd::plane_errors): within 1e-5 of the energy (rounding of the values above 2^24
+          // and of sums of up to 128 terms a lane, each some 6e-8 relative).
+          const double tolerance = (p + 1 == want.size() ? 1e-12 : 1e-5) * std::max(1.0, want.back().error);
+          EXPECT_NEAR(got[p].error, want[p].error, tolerance);
           EXPECT_EQ(got[p].significant_quads, want[p].significant_quads);
           EXPECT_EQ(got[p].significant_samples, want[p].significant_samples);
           EXPECT_EQ(got[p].magnitude_bits, want[p].magnitude_bits);

@@ -114,6 +114,10 @@ void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const std::uint8_t
   const hn::Rebind<std::int32_t, decltype(dd)> di;  // as many int32 lanes as doubles
   const hn::RebindToUnsigned<decltype(di)> du;
   const hn::Rebind<std::uint8_t, decltype(dd)> d8;
+  const hn::ScalableTag<float> df;  // a chunk: one vector of floats
+  const hn::RebindToSigned<decltype(df)> dfi;
+  const hn::RebindToUnsigned<decltype(df)> dfu;
+  const hn::Rebind<std::uint8_t, decltype(df)> df8;
   const auto to_units = hn::Set(dd, 1.0 / 256);
   // Each sample's fraction below its index, as a value in [0, 1) (exact: a multiple of 1/256).
   auto offset_at = [&](std::size_t at) {
@@ -126,19 +130,23 @@ void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const std::uint8_t
   HWY_ALIGN double halves[kMaxPlanes + 1];
   for (int p = 0; p <= planes; ++p) halves[p] = p > 0 ? static_cast<double>(std::uint64_t{1} << (p - 1)) : half_at_zero;
   for (int p = 0; p <= planes; ++p) error[p] = 0;
-  // The samples in segments of up to kSegment, each in chunks of 2N lanes. A chunk counts for plane p
-  // as a whole (every sample insignificant: its values' squares) when its largest magnitude is
-  // shorter than p + 1 bits, and sample by sample otherwise; it is visited only for the planes below
-  // its largest length, not for every plane of the block (most of a block's samples are far smaller
-  // than its largest). The chunks are ordered by that length, longest first, so that the chunks of
-  // plane p are a prefix of the order: the plane's loop keeps its sums in registers and has no test
-  // per chunk.
+  // The samples in segments of up to kSegment, each in chunks of a float vector's lanes. A chunk
+  // counts for plane p as a whole (every sample insignificant: its values' squares, summed in
+  // double, exactly) when its largest magnitude is shorter than p + 1 bits, and sample by sample
+  // otherwise; it is visited only for the planes below its largest length, not for every plane of
+  // the block (most of a block's samples are far smaller than its largest). The chunks are ordered
+  // by that length, longest first, so that the chunks of plane p are a prefix of the order: the
+  // plane's loop keeps its sums in registers and has no test per chunk.
+  // The sample-by-sample part is in float, twice the lanes of double: these errors only estimate
+  // (ht_rate.cpp: which planes to code, which blocks to skip), and float's 24-bit mantissa leaves
+  // each sum within some 1e-6 of the exact one; the energy (plane `planes`) stays exact.
   constexpr std::size_t kSegment = 1024;  // samples
-  HWY_ALIGN double values[kSegment];
+  HWY_ALIGN float values[kSegment];
   HWY_ALIGN double whole[(kMaxPlanes + 1) * hn::MaxLanes(dd)];
   std::uint8_t longest[kSegment];
   std::uint16_t order[kSegment];
-  const std::size_t C = 2 * N;  // a chunk: two vectors of doubles
+  const std::size_t C = hn::Lanes(df);
+  const auto float_units = hn::Set(df, 1.0f / 256);
   std::size_t i = 0;
   while (i + C <= n) {
     const std::size_t chunks = std::min(kSegment, n - i) / C;
@@ -148,20 +156,23 @@ void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const std::uint8_t
     for (std::size_t c = 0; c < chunks; ++c) {
       const std::size_t at = i + c * C;
       // Magnitudes are below 2^31, so they convert as int32.
-      const auto m0 = hn::BitCast(di, hn::LoadU(du, magnitude + at));
-      const auto m1 = hn::BitCast(di, hn::LoadU(du, magnitude + at + N));
-      const auto value0 = hn::Add(hn::PromoteTo(dd, m0), offset_at(at));
-      const auto value1 = hn::Add(hn::PromoteTo(dd, m1), offset_at(at + N));
-      hn::Store(value0, dd, values + c * C);
-      hn::Store(value1, dd, values + c * C + N);
-      const int length = static_cast<int>(
-          std::bit_width(static_cast<std::uint32_t>(hn::GetLane(hn::MaxOfLanes(di, hn::Max(m0, m1))))));
+      const auto m = hn::BitCast(dfi, hn::LoadU(dfu, magnitude + at));
+      auto value = hn::ConvertTo(df, m);
+      if (fraction)
+        value = hn::MulAdd(hn::ConvertTo(df, hn::PromoteTo(dfi, hn::LoadU(df8, fraction + at))), float_units, value);
+      hn::Store(value, df, values + c * C);
+      const int length =
+          static_cast<int>(std::bit_width(static_cast<std::uint32_t>(hn::GetLane(hn::MaxOfLanes(dfi, m)))));
       longest[c] = static_cast<std::uint8_t>(length);
       ++of_length[length];
       longest_of_all = std::max(longest_of_all, length);
       V w = hn::Load(dd, whole + static_cast<std::size_t>(length) * N);
-      hn::Store(hn::MulAdd(value1, value1, hn::MulAdd(value0, value0, w)), dd,
-                whole + static_cast<std::size_t>(length) * N);
+      for (std::size_t j = 0; j < C; j += N) {
+        const auto exact =
+            hn::Add(hn::PromoteTo(dd, hn::BitCast(di, hn::LoadU(du, magnitude + at + j))), offset_at(at + j));
+        w = hn::MulAdd(exact, exact, w);
+      }
+      hn::Store(w, dd, whole + static_cast<std::size_t>(length) * N);
     }
     // longer[L]: the chunks whose largest magnitude is longer than L bits. Plane L visits those,
     // and in the order by length, longest first (a counting sort), the chunks of length L start there.
@@ -178,26 +189,29 @@ void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const std::uint8_t
       if (p >= longest_of_all) continue;
       // A sample of magnitude m and value v = m + offset (its fraction, in [0, 1)) is significant at p
       // when v >= 2^p, and leaves v - floor(v / 2^p) 2^p - half(p) = (m mod 2^p) + offset - half(p); an
-      // insignificant one leaves v. Exact in double: scaling by 2^p and the floor are exact, and
-      // every term is a multiple of 1/256 below 2^31.
-      const auto step = hn::Set(dd, static_cast<double>(std::uint64_t{1} << p));
-      const auto inverse_step = hn::Set(dd, 1.0 / static_cast<double>(std::uint64_t{1} << p));
-      const auto half = hn::Set(dd, halves[p]);
-      V sum0 = hn::Zero(dd), sum1 = hn::Zero(dd);
+      // insignificant one leaves v.
+      const auto step = hn::Set(df, static_cast<float>(std::uint64_t{1} << p));
+      const auto inverse_step = hn::Set(df, 1.0f / static_cast<float>(std::uint64_t{1} << p));
+      const auto half = hn::Set(df, static_cast<float>(halves[p]));
+      auto sum0 = hn::Zero(df), sum1 = hn::Zero(df);
       const std::size_t visited = longer[p];
-      auto left_of = [&](const double* at) {
-        const auto value = hn::Load(dd, at);
+      auto left_of = [&](const float* at) {
+        const auto value = hn::Load(df, at);
         const auto above = hn::Floor(hn::Mul(value, inverse_step));
         const auto left = hn::Sub(hn::NegMulAdd(above, step, value), half);
         return hn::IfThenElse(hn::Ge(value, step), left, value);
       };
-      for (std::size_t k = 0; k < visited; ++k) {
-        const double* chunk = values + order[k];
-        const auto left0 = left_of(chunk), left1 = left_of(chunk + N);
+      std::size_t k = 0;
+      for (; k + 2 <= visited; k += 2) {
+        const auto left0 = left_of(values + order[k]), left1 = left_of(values + order[k + 1]);
         sum0 = hn::MulAdd(left0, left0, sum0);
         sum1 = hn::MulAdd(left1, left1, sum1);
       }
-      error[p] += hn::GetLane(hn::SumOfLanes(dd, hn::Add(sum0, sum1)));
+      if (k < visited) {
+        const auto left = left_of(values + order[k]);
+        sum0 = hn::MulAdd(left, left, sum0);
+      }
+      error[p] += static_cast<double>(hn::GetLane(hn::SumOfLanes(df, hn::Add(sum0, sum1))));
     }
     i += chunks * C;
   }

@@ -79,7 +79,7 @@ t1::EncodedBlock encode_ht_block(const HtBlock& block, int magnitude_bitplanes, 
 // most; a significant one a CxtVLC codeword and a U-VLC residual; each significant sample about
 // U_q MagSgn bits, U_q the bit length of the quad's largest magnitude at that plane).
 struct PlaneStatistics {
-  double error = 0;
+  double error = 0;  // an estimate within 1e-5 of the energy, which (the last entry's) is exact
   double significant_quads = 0;
   double significant_samples = 0;
   double magnitude_bits = 0;  // the sum over significant samples of their quad's magnitude bit length
