@@ -15,6 +15,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <random>
 #include <string>
@@ -630,6 +631,49 @@ TEST(HtBlock, FloatAndIntegerBlocksInPlaceMatchTheSpanCoder) {
   ASSERT_EQ(f.passes.size(), 1u);
   EXPECT_GT(f.passes[0].distortion_decrease, 0.9 * f.energy);
   EXPECT_LE(f.passes[0].distortion_decrease, f.energy);
+}
+
+// A float block's bit lengths come from the quantiser's float exponents (simd::quantize_row), not
+// from the indices: they must be the indices' bit lengths, with and without the top bit, at every
+// power of two and either side of it, below 1, at the clamp, for NaN and infinities.
+TEST(HtBlock, FloatLoadsMeasureTheIndicesBitLengths) {
+  std::vector<float> values = {0.0f,
+                               -0.0f,
+                               1e-30f,
+                               0.5f,
+                               0.99999994f,
+                               1.0f,
+                               -1.0f,
+                               1.5f,
+                               2.0f,
+                               3.0f,
+                               3.9999998f,
+                               std::numeric_limits<float>::quiet_NaN(),
+                               std::numeric_limits<float>::infinity(),
+                               -std::numeric_limits<float>::infinity(),
+                               2147483520.0f,
+                               3e9f,
+                               -3e9f};
+  for (int k = 1; k < 31; ++k) {
+    const float power = std::ldexp(1.0f, k);
+    for (const float v : {power, std::nextafter(power, 0.0f), std::nextafter(power, 1e10f), power * 1.5f,
+                          std::nextafter(power * 2, 0.0f), -power - 1})
+      values.push_back(v);
+  }
+  std::mt19937 rng(29);
+  while (values.size() % 64 != 0 || values.size() < 256)
+    values.push_back(std::ldexp(std::uniform_real_distribution<float>(-1, 1)(rng), static_cast<int>(rng() % 32)));
+  const int w = 64, h = static_cast<int>(values.size() / 64);
+  for (const float inverse_step : {1.0f, 0.37f}) {
+    const auto b = codec::ht::load_ht_block(codec::t1::FloatBlock{values.data(), w, w, h, inverse_step});
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const std::uint32_t m = b.magnitudes[i];
+      const int l = static_cast<int>(std::bit_width(m));
+      const int below = static_cast<int>(std::bit_width(l > 0 ? m ^ (std::uint32_t{1} << (l - 1)) : 0u));
+      ASSERT_EQ(b.lengths[i], l) << values[i] << " x " << inverse_step << ": index " << m;
+      ASSERT_EQ(b.lengths_below_top[i], below) << values[i] << " x " << inverse_step << ": index " << m;
+    }
+  }
 }
 
 // Rate control loads each block into one block a worker keeps (load_ht_block into a reused

@@ -17,7 +17,8 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 std::uint32_t QuantizeRow(const float* HWY_RESTRICT row, std::size_t n, float inverse_step,
                           std::uint32_t* HWY_RESTRICT magnitude, std::uint8_t* HWY_RESTRICT negative,
-                          std::uint8_t* HWY_RESTRICT fraction) {
+                          std::uint8_t* HWY_RESTRICT fraction, std::uint8_t* HWY_RESTRICT length,
+                          std::uint8_t* HWY_RESTRICT length_below_top) {
   const hn::ScalableTag<float> df;
   const hn::RebindToSigned<decltype(df)> di;
   const hn::RebindToUnsigned<decltype(df)> du;
@@ -27,6 +28,14 @@ std::uint32_t QuantizeRow(const float* HWY_RESTRICT row, std::size_t n, float in
   const auto largest = hn::Set(df, t1::kLargestMagnitude);
   const auto to_256ths = hn::Set(df, 256.0f);
   const auto zero = hn::Zero(di), top = hn::Set(di, 255), one = hn::Set(di, 1);
+  // Bit lengths from the scaled magnitude m's float exponent: floor(m) has bit length e - 126 for
+  // m >= 1 (e its exponent field, 127 + floor(log2 m)), and a field of 126 or less means m < 1,
+  // index 0. Without its top bit the index is floor(m - 2^floor(log2 m)), the difference exact (m
+  // is below twice that power), so its length comes alike.
+  const auto exponent_bias = hn::Set(di, 126), sign_and_exponent = hn::Set(di, static_cast<std::int32_t>(0xFF800000u));
+  const auto length_of = [&](auto value) {
+    return hn::Max(hn::Sub(hn::ShiftRight<23>(hn::BitCast(di, value)), exponent_bias), zero);
+  };
   auto any = hn::Zero(di);
   std::size_t i = 0;
   for (; i + N <= n; i += N) {
@@ -39,6 +48,9 @@ std::uint32_t QuantizeRow(const float* HWY_RESTRICT row, std::size_t n, float in
     hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(f, zero), top)), d8, fraction + i);
     const auto is_negative = hn::And(hn::RebindMask(di, hn::Lt(c, hn::Zero(df))), hn::Ne(q, zero));
     hn::StoreU(hn::DemoteTo(d8, hn::IfThenElseZero(is_negative, one)), d8, negative + i);
+    const auto power = hn::BitCast(df, hn::And(hn::BitCast(di, m), sign_and_exponent));
+    hn::StoreU(hn::DemoteTo(d8, length_of(m)), d8, length + i);
+    hn::StoreU(hn::DemoteTo(d8, length_of(hn::Sub(m, power))), d8, length_below_top + i);
     any = hn::Or(any, q);
   }
   HWY_ALIGN std::int32_t lanes[hn::MaxLanes(di)];
@@ -47,9 +59,13 @@ std::uint32_t QuantizeRow(const float* HWY_RESTRICT row, std::size_t n, float in
   for (std::size_t k = 0; k < N; ++k) all |= static_cast<std::uint32_t>(lanes[k]);
   for (; i < n; ++i) {
     const std::int32_t index = t1::quantize(row[i], inverse_step, fraction[i]);
-    magnitude[i] = static_cast<std::uint32_t>(index < 0 ? -index : index);
+    const std::uint32_t m = static_cast<std::uint32_t>(index < 0 ? -index : index);
+    magnitude[i] = m;
     negative[i] = index < 0 ? 1 : 0;
-    all |= magnitude[i];
+    const int l = static_cast<int>(std::bit_width(m));
+    length[i] = static_cast<std::uint8_t>(l);
+    length_below_top[i] = static_cast<std::uint8_t>(std::bit_width(l > 0 ? m ^ (std::uint32_t{1} << (l - 1)) : 0u));
+    all |= m;
   }
   return all;
 }
@@ -482,8 +498,10 @@ CleanupErrors cleanup_errors(const std::uint32_t* magnitude, const std::uint8_t*
 }
 
 std::uint32_t quantize_row(const float* row, std::size_t n, float inverse_step, std::uint32_t* magnitude,
-                           std::uint8_t* negative, std::uint8_t* fraction) {
-  return HWY_DYNAMIC_DISPATCH(QuantizeRow)(row, n, inverse_step, magnitude, negative, fraction);
+                           std::uint8_t* negative, std::uint8_t* fraction, std::uint8_t* length,
+                           std::uint8_t* length_below_top) {
+  return HWY_DYNAMIC_DISPATCH(QuantizeRow)(row, n, inverse_step, magnitude, negative, fraction, length,
+                                           length_below_top);
 }
 
 void plane_errors(const std::uint32_t* magnitude, const std::uint8_t* fraction, std::size_t n, int planes,

@@ -7,9 +7,11 @@ namespace codec::ht::simd {
 
 // A row of float coefficients quantised as t1::quantize(c, inverse_step, fraction) does, bit for
 // bit: magnitude = the index's magnitude, negative = 1 where the index is negative, fraction =
-// floor(256 * what the index drops), clamped to 0..255. Returns the OR of the magnitudes.
+// floor(256 * what the index drops), clamped to 0..255; and the magnitudes' bit lengths as
+// bit_lengths gives them. Returns the OR of the magnitudes.
 std::uint32_t quantize_row(const float* row, std::size_t n, float inverse_step, std::uint32_t* magnitude,
-                           std::uint8_t* negative, std::uint8_t* fraction);
+                           std::uint8_t* negative, std::uint8_t* fraction, std::uint8_t* length,
+                           std::uint8_t* length_below_top);
 
 // What a cleanup on plane p leaves, over all n samples, with v = magnitude + fraction / 256 (or
 // the magnitude alone when `fraction` is null) and e_p(v) the residual after a cleanup on p

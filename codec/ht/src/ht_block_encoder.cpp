@@ -99,6 +99,8 @@ void size_buffers(HtBlock& b, int width, int height, bool with_fractions) {
   b.height = height;
   b.magnitudes.resize(n);
   b.negative.resize(n);
+  b.lengths.resize(n);
+  b.lengths_below_top.resize(n);
   if (with_fractions)
     b.fractions.resize(n);
   else
@@ -146,10 +148,10 @@ void load_ht_block(const t1::FloatBlock& block, HtBlock& b) {
   for (int y = 0; y < block.height; ++y) {
     const std::size_t base = static_cast<std::size_t>(y) * w;
     all |= simd::quantize_row(block.origin + y * block.stride, w, block.inverse_step, b.magnitudes.data() + base,
-                              b.negative.data() + base, b.fractions.data() + base);
+                              b.negative.data() + base, b.fractions.data() + base, b.lengths.data() + base,
+                              b.lengths_below_top.data() + base);
   }
   b.bit_planes = static_cast<int>(std::bit_width(all));
-  measure_bit_lengths(b);
 }
 
 HtBlock load_ht_block(const t1::IntegerBlock& block) {
