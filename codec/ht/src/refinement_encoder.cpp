@@ -3,9 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#if defined(__GNUC__) && defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 #include "bit_packers.h"
 #include "block_simd.h"
@@ -170,10 +175,9 @@ void sigprop_pass(std::span<const std::uint8_t> negative, int width, int height,
 
 // The MagRef pass on plane q = p - 1 (T.814 7.5): stripes of four rows, column by column, top to
 // bottom, bit q of every sample significant in the cleanup (a magnitude at or above 2^p). Each
-// column's bits come from its simd::stripe_columns byte and a table, and are packed 32 at a time.
-void magref_pass(std::span<const std::uint8_t> columns, VlcPacker& out) {
-  std::uint64_t bits = 0;
-  int count = 0;
+// column's bits come from its simd::stripe_columns byte and a table, and are packed 32 at a time
+// (`bits`, `count`: what is pending, fewer than 32).
+void magref_columns(std::span<const std::uint8_t> columns, std::uint64_t& bits, int& count, VlcPacker& out) {
   for (const std::uint8_t column : columns) {
     const std::uint8_t entry = kColumnBits[column];
     bits |= static_cast<std::uint64_t>(entry & 15) << count;
@@ -184,7 +188,53 @@ void magref_pass(std::span<const std::uint8_t> columns, VlcPacker& out) {
       count -= 32;
     }
   }
+}
+
+void magref_pass(std::span<const std::uint8_t> columns, VlcPacker& out) {
+  std::uint64_t bits = 0;
+  int count = 0;
+  magref_columns(columns, bits, count, out);
   if (count > 0) out.put(static_cast<std::uint32_t>(bits), count);
+}
+
+#if defined(__GNUC__) && defined(__x86_64__)
+// The same eight columns at a time with BMI2's PEXT, which gathers the bits of eight column bytes'
+// high nibbles where their low nibbles are set, in column order: one instruction for what the
+// table takes eight lookups.
+[[gnu::target("bmi2,popcnt")]] void magref_pass_bmi2(std::span<const std::uint8_t> columns, VlcPacker& out) {
+  constexpr std::uint64_t kLowNibbles = 0x0F0F0F0F0F0F0F0Full;
+  std::uint64_t bits = 0;
+  int count = 0;
+  std::size_t i = 0;
+  for (; i + 8 <= columns.size(); i += 8) {
+    std::uint64_t eight;
+    std::memcpy(&eight, columns.data() + i, sizeof eight);
+    const std::uint64_t significant = eight & kLowNibbles;
+    bits |= _pext_u64((eight >> 4) & kLowNibbles, significant) << count;  // at most 32 bits, count < 32
+    count += static_cast<int>(_mm_popcnt_u64(significant));
+    if (count >= 32) {
+      out.put(static_cast<std::uint32_t>(bits), 32);
+      bits >>= 32;
+      count -= 32;
+    }
+  }
+  magref_columns(columns.subspan(i), bits, count, out);
+  if (count > 0) out.put(static_cast<std::uint32_t>(bits), count);
+}
+
+// PEXT where it is fast: not on AMD's family 17h (Zen, Zen 2), which runs it in microcode, some
+// 8 cycles a set mask bit.
+bool fast_bit_extract() {
+  static const bool fast = __builtin_cpu_supports("bmi2") && !__builtin_cpu_is("amdfam17h");
+  return fast;
+}
+#endif
+
+void code_magref(std::span<const std::uint8_t> columns, VlcPacker& out) {
+#if defined(__GNUC__) && defined(__x86_64__)
+  if (fast_bit_extract()) return magref_pass_bmi2(columns, out);
+#endif
+  magref_pass(columns, out);
 }
 
 }  // namespace
@@ -208,7 +258,7 @@ RefinementSegment encode_refinement(std::span<const std::uint32_t> magnitudes, s
                          columns.data() + static_cast<std::size_t>(y0 / 4) * w);
   RefinementSegment out;
   VlcPacker magref(VlcPacker::WithoutScup{});
-  magref_pass(columns, magref);
+  code_magref(columns, magref);
   SigPropPacker sigprop;
   sigprop_pass(negative, width, height, columns, sigprop, out.became_significant);
   out.bytes = sigprop.finish();
