@@ -44,15 +44,22 @@ class SampleGrid {
         plane_(plane),
         stride_(static_cast<std::size_t>(width) + 2 * kBorder),
         exponents_(thread_exponents()) {
-    exponents_.assign(stride_ * (static_cast<std::size_t>(height) + 2) + kPairOverread, 0);
+    // Every cell is written, the borders and what follows the last row with 0, so the buffer
+    // needs no clearing first (it held another block's cells, in another layout).
+    const std::size_t rows_end = stride_ * (static_cast<std::size_t>(height) + 1);
+    exponents_.resize(rows_end + stride_ + kPairOverread);
     cells_ = exponents_.data();
+    std::memset(cells_, 0, stride_);
     for (int y = 0; y < height; ++y) {
       const std::uint8_t* length = lengths.data() + index(0, y);
       const std::uint8_t* below_top = lengths_below_top.data() + index(0, y);
       std::uint8_t* cells = cells_ + cell(0, y);
       const auto p = static_cast<std::uint8_t>(plane);
+      std::memset(cells - kBorder, 0, kBorder);
       for (int x = 0; x < width; ++x) cells[x] = exponent(length[x], below_top[x], p);
+      std::memset(cells + width, 0, kBorder);
     }
+    std::memset(cells_ + rows_end, 0, stride_ + kPairOverread);
   }
   // The cell of (x, y), the cells of its row's next samples following it.
   const std::uint8_t* cells_at(int x, int y) const { return cells_ + cell(x, y); }
