@@ -376,6 +376,29 @@ void QuadRowAnalysis(const std::uint8_t* HWY_RESTRICT above, const std::uint8_t*
   }
 }
 
+void QuadMagSgn(const std::uint32_t* HWY_RESTRICT upper, const std::uint32_t* HWY_RESTRICT lower,
+                const std::uint8_t* HWY_RESTRICT upper_negative, const std::uint8_t* HWY_RESTRICT lower_negative,
+                std::size_t width, int plane, std::uint32_t* HWY_RESTRICT values) {
+  const hn::ScalableTag<std::uint32_t> d;
+  const hn::Rebind<std::uint8_t, decltype(d)> d8;
+  const std::size_t N = hn::Lanes(d);
+  const auto two = hn::Set(d, 2);
+  // v = 2 (mu - 1) + s = 2 mu + s - 2, wrapping for an insignificant sample (never sent).
+  const auto value_of = [&](const std::uint32_t* m, const std::uint8_t* negative, std::size_t x) {
+    const auto mu = hn::ShiftRightSame(hn::LoadU(d, m + x), plane);
+    return hn::Sub(hn::Add(hn::ShiftLeft<1>(mu), hn::PromoteTo(d, hn::LoadU(d8, negative + x))), two);
+  };
+  std::size_t x = 0;
+  if (lower) {
+    for (; x + N <= width; x += N)
+      hn::StoreInterleaved2(value_of(upper, upper_negative, x), value_of(lower, lower_negative, x), d, values + 2 * x);
+  }
+  for (; x < width; ++x) {
+    values[2 * x] = 2 * (upper[x] >> plane) + upper_negative[x] - 2;
+    values[2 * x + 1] = lower ? 2 * (lower[x] >> plane) + lower_negative[x] - 2 : 0;
+  }
+}
+
 std::size_t QuadCounts(const std::uint8_t* HWY_RESTRICT lengths, const std::uint8_t* HWY_RESTRICT tops,
                        std::size_t width, std::size_t height, int planes, std::int64_t* HWY_RESTRICT quads,
                        std::int64_t* HWY_RESTRICT samples, std::int64_t* HWY_RESTRICT top_sums,
@@ -466,6 +489,12 @@ HWY_EXPORT(StripeColumns);
 HWY_EXPORT(QuadCounts);
 HWY_EXPORT(ColumnBitMasks);
 HWY_EXPORT(QuadRowAnalysis);
+HWY_EXPORT(QuadMagSgn);
+
+void quad_magsgn(const std::uint32_t* upper, const std::uint32_t* lower, const std::uint8_t* upper_negative,
+                 const std::uint8_t* lower_negative, std::size_t width, int plane, std::uint32_t* values) {
+  HWY_DYNAMIC_DISPATCH(QuadMagSgn)(upper, lower, upper_negative, lower_negative, width, plane, values);
+}
 
 void quad_row_analysis(const std::uint8_t* above, const std::uint8_t* upper, const std::uint8_t* lower,
                        std::size_t quads, bool initial_row, std::uint16_t* index, std::uint16_t* exponents) {

@@ -79,4 +79,12 @@ inline constexpr std::size_t kQuadRowOverwrite = 256;
 void quad_row_analysis(const std::uint8_t* above, const std::uint8_t* upper, const std::uint8_t* lower,
                        std::size_t quads, bool initial_row, std::uint16_t* index, std::uint16_t* exponents);
 
+// The MagSgn values v_n = 2 (mu_n - 1) + s_n (T.814 7.3.8) of a row of quads, mu_n = magnitude >> plane,
+// in the quads' sample order (7.3.1): values[4q + n] for sample n of quad q, from the magnitudes and
+// signs of the quad row's two rows of `width` samples (`lower` null past the block's last row, its
+// values then 0). An insignificant sample's value is meaningless (it sends none). Writes 2 * width
+// values.
+void quad_magsgn(const std::uint32_t* upper, const std::uint32_t* lower, const std::uint8_t* upper_negative,
+                 const std::uint8_t* lower_negative, std::size_t width, int plane, std::uint32_t* values);
+
 }  // namespace codec::ht::simd

@@ -8,7 +8,6 @@
 #include <string>
 
 #include "bit_packers.h"
-#include "block_geometry.h"
 #include "block_simd.h"
 #include "vlc_encoding.h"
 
@@ -26,24 +25,17 @@ std::uint8_t exponent(std::uint8_t length, std::uint8_t below_top, std::uint8_t 
   return static_cast<std::uint8_t>(significant * (length - p + (below_top > p ? 1 : 0)));
 }
 
-// The block's samples as the cleanup pass sees them, with 0 outside the block so that quads that
-// straddle its right or bottom edge and the neighbours of edge quads need no special cases: the
-// exponents are kept with a border (two columns either side, a row above and below) wide enough
-// for every neighbour the contexts and the exponent predictor read, so no read checks bounds.
-// The magnitudes are read shifted down to the cleanup's plane (mu = magnitude >> plane), so that
-// no shifted copy of the block is made per candidate plane; the exponents live in a buffer of the
-// thread's, reused from block to block.
+// The block's magnitude exponents at the cleanup's plane as the cleanup pass sees them, with 0
+// outside the block so that quads that straddle its right or bottom edge and the neighbours of
+// edge quads need no special cases: they are kept with a border (two columns either side, a row
+// above and below) wide enough for every neighbour the contexts and the exponent predictor read,
+// so no read checks bounds. They come from the block's bit lengths (no shifted copy of the block
+// is made per candidate plane) and live in a buffer of the thread's, reused from block to block.
 class SampleGrid {
  public:
-  SampleGrid(std::span<const std::uint32_t> magnitudes, std::span<const std::uint8_t> negative,
-             std::span<const std::uint8_t> lengths, std::span<const std::uint8_t> lengths_below_top, int width,
+  SampleGrid(std::span<const std::uint8_t> lengths, std::span<const std::uint8_t> lengths_below_top, int width,
              int height, int plane)
-      : magnitudes_(magnitudes),
-        negative_(negative),
-        width_(width),
-        plane_(plane),
-        stride_(static_cast<std::size_t>(width) + 2 * kBorder),
-        exponents_(thread_exponents()) {
+      : width_(width), stride_(static_cast<std::size_t>(width) + 2 * kBorder), exponents_(thread_exponents()) {
     // Every cell is written, the borders and what follows the last row with 0, so the buffer
     // needs no clearing first (it held another block's cells, in another layout).
     const std::size_t rows_end = stride_ * (static_cast<std::size_t>(height) + 1);
@@ -63,11 +55,6 @@ class SampleGrid {
   }
   // The cell of (x, y), the cells of its row's next samples following it.
   const std::uint8_t* cells_at(int x, int y) const { return cells_ + cell(x, y); }
-  // v_n = 2 (mu - 1) + s (T.814 7.3.8), for a significant sample.
-  std::uint32_t magsgn_value(int x, int y) const {
-    const std::size_t i = index(x, y);
-    return 2 * ((magnitudes_[i] >> plane_) - 1) + (negative_[i] ? 1u : 0u);
-  }
 
  private:
   static std::vector<std::uint8_t>& thread_exponents() {
@@ -84,9 +71,7 @@ class SampleGrid {
   std::size_t cell(int x, int y) const {
     return static_cast<std::size_t>(y + 1) * stride_ + static_cast<std::size_t>(x + static_cast<int>(kBorder));
   }
-  std::span<const std::uint32_t> magnitudes_;
-  std::span<const std::uint8_t> negative_;
-  int width_, plane_;
+  int width_;
   std::size_t stride_;
   std::vector<std::uint8_t>& exponents_;
   // Its cells, read through a plain pointer: GCC otherwise recomputes the thread_local vector's
@@ -95,7 +80,6 @@ class SampleGrid {
 };
 
 struct QuadCoding {
-  int x0 = 0, y0 = 0;     // top-left sample
   int rho = 0;            // significance pattern
   int exponent_bits = 0;  // U_q: bits of each significant sample's v_n, before the EMB saving
   int residual = 0;       // u_q = U_q - kappa_q
@@ -173,14 +157,14 @@ void encode_pair_residuals(const QuadCoding* quads, int count, bool initial_row,
 // MagSgn bits of a quad (T.814 7.3.8): each significant sample sends the low U_q bits of v_n, or
 // U_q - 1 where e_k implies the top one. They are gathered into one word and put at once while
 // they fit (at most kWideBits).
-void put_magsgn(const SampleGrid& g, const QuadCoding& q, MagSgnPacker& ms) {
+// `values` holds the quad's four v_n (simd::quad_magsgn).
+void put_magsgn(const std::uint32_t* values, const QuadCoding& q, MagSgnPacker& ms) {
   std::uint64_t word = 0;
   int count = 0;
   for (unsigned rho = static_cast<unsigned>(q.rho); rho != 0; rho &= rho - 1) {
     const int n = std::countr_zero(rho);
     const int bits = q.exponent_bits - ((q.code.e_k >> n) & 1);
-    const std::uint64_t value =
-        g.magsgn_value(q.x0 + kQuadOffsets[n][0], q.y0 + kQuadOffsets[n][1]) & ((std::uint64_t{1} << bits) - 1);
+    const std::uint64_t value = values[n] & ((std::uint64_t{1} << bits) - 1);
     if (count + bits > MagSgnPacker::kWideBits) {
       ms.put_wide(word, count);
       word = 0, count = 0;
@@ -237,7 +221,7 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
       lengths_below_top.size() != samples)
     throw std::invalid_argument("HT cleanup: magnitudes, signs and bit lengths must hold width * height samples");
   if (plane < 0 || plane > 30) throw std::invalid_argument("HT cleanup: the plane must be 0..30");
-  const SampleGrid grid(magnitudes, negative, lengths, lengths_below_top, width, height, plane);
+  const SampleGrid grid(lengths, lengths_below_top, width, height, plane);
   const int quads_wide = (width + 1) / 2, quads_high = (height + 1) / 2;
 
   MagSgnPacker magsgn;
@@ -245,6 +229,10 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
   VlcPacker vlc;
   // Each row of quads is analysed at once (simd::quad_row_analysis); the loop below only emits.
   thread_local std::vector<std::uint16_t> index_buffer, exponent_buffer;
+  thread_local std::vector<std::uint32_t> magsgn_buffer;
+  magsgn_buffer.resize(4 * static_cast<std::size_t>(quads_wide));
+  std::uint32_t* const magsgn_values = magsgn_buffer.data();
+  const auto w = static_cast<std::size_t>(width);
   index_buffer.resize(static_cast<std::size_t>(quads_wide) + simd::kQuadRowOverwrite);
   exponent_buffer.resize(static_cast<std::size_t>(quads_wide) + simd::kQuadRowOverwrite);
   std::uint16_t* const indices = index_buffer.data();
@@ -254,6 +242,13 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
     const VlcEncodingTable& table = vlc_encoding_table(initial_row ? QuadRowKind::Initial : QuadRowKind::Other);
     simd::quad_row_analysis(grid.cells_at(0, 2 * qy - 1), grid.cells_at(0, 2 * qy), grid.cells_at(0, 2 * qy + 1),
                             static_cast<std::size_t>(quads_wide), initial_row, indices, exponents);
+    {
+      const std::size_t upper = static_cast<std::size_t>(2 * qy) * w;
+      const bool has_lower = 2 * qy + 1 < height;
+      simd::quad_magsgn(magnitudes.data() + upper, has_lower ? magnitudes.data() + upper + w : nullptr,
+                        negative.data() + upper, has_lower ? negative.data() + upper + w : nullptr, w, plane,
+                        magsgn_values);
+    }
     // Quads go in pairs (T.814 7.3.1): both quads' significance, then their residuals, then MagSgn.
     for (int qx = 0; qx < quads_wide; qx += 2) {
       // Runs of empty quads in context 0, four at a time: MEL 0s alone (most of a low-rate cleanup).
@@ -285,8 +280,6 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
       std::array<QuadCoding, 2> quads;
       for (int k = 0; k < count; ++k) {
         QuadCoding& q = quads[static_cast<std::size_t>(k)];
-        q.x0 = 2 * (qx + k);
-        q.y0 = 2 * qy;
         q.rho = VlcEncodingTable::rho_of(index[k]);
         q.exponent_bits = exponents[qx + k] & 0xFF;
         q.residual = exponents[qx + k] >> 8;
@@ -301,7 +294,8 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
         }
       }
       encode_pair_residuals(quads.data(), count, initial_row, mel, vlc);
-      for (int k = 0; k < count; ++k) put_magsgn(grid, quads[static_cast<std::size_t>(k)], magsgn);
+      for (int k = 0; k < count; ++k)
+        put_magsgn(magsgn_values + 4 * static_cast<std::size_t>(qx + k), quads[static_cast<std::size_t>(k)], magsgn);
     }
   }
   std::vector<std::uint8_t> ms = magsgn.finish();
