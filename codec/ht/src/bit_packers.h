@@ -1,4 +1,5 @@
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -14,6 +15,8 @@ namespace codec::ht {
 // differ in how they end.
 class ForwardStuffedPacker {
  public:
+  // Room for `bytes` bytes up front: a block's stream then grows without reallocating.
+  void reserve(std::size_t bytes) { bytes_.reserve(bytes); }
   // The low `count` bits of `bits`, least significant first (count <= 32).
   void put(std::uint32_t bits, int count) {
     if (count == 0) return;
@@ -77,6 +80,7 @@ class SigPropPacker : public ForwardStuffedPacker {
 // The MEL bit packer (T.814 7.1.3): bits most significant first; after 0xFF, 7 bits.
 class MelPacker {
  public:
+  void reserve(std::size_t bytes) { bytes_.reserve(bytes); }
   void put_bit(int bit) {
     tmp_ = (tmp_ << 1) | static_cast<std::uint32_t>(bit);
     if (--remaining_ == 0) {
@@ -103,6 +107,7 @@ class MelPacker {
 // significant first, and lowers k. E is the standard's 13-entry exponent table.
 class MelEncoder {
  public:
+  void reserve(std::size_t bytes) { packer_.reserve(bytes); }
   void encode(bool symbol) {
     if (!symbol) {
       if (++run_ == (1 << kExponent[state_])) {
@@ -156,6 +161,7 @@ class VlcPacker {
   // refinement segment, which the decoder starts as if a byte above 0x8F preceded it.
   struct WithoutScup {};
   explicit VlcPacker(WithoutScup) : acc_(0), used_(0) {}
+  void reserve(std::size_t bytes) { bytes_.reserve(bytes); }
   // The low `count` bits of `bits`, least significant first (count <= 32).
   void put(std::uint32_t bits, int count) {
     if (count == 0) return;

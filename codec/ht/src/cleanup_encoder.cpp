@@ -224,9 +224,14 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
   const SampleGrid grid(lengths, lengths_below_top, width, height, plane);
   const int quads_wide = (width + 1) / 2, quads_high = (height + 1) / 2;
 
+  // Room for what a cleanup near a lossy cut usually takes (a 64x64 block's some hundreds of bytes
+  // of MagSgn), so that the streams rarely reallocate as they grow.
   MagSgnPacker magsgn;
+  magsgn.reserve(samples / 2);
   MelEncoder mel;
+  mel.reserve(samples / 32);
   VlcPacker vlc;
+  vlc.reserve(samples / 8);
   // Each row of quads is analysed at once (simd::quad_row_analysis); the loop below only emits.
   thread_local std::vector<std::uint16_t> index_buffer, exponent_buffer;
   thread_local std::vector<std::uint32_t> magsgn_buffer;

@@ -201,7 +201,9 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
   std::vector<PlaneStatistics> out(static_cast<std::size_t>(planes) + 1);
   // Errors, plane by plane over all samples in SIMD: a magnitude below 2^p leaves its whole value,
   // one at or above it its residual at p.
-  std::vector<double> errors(static_cast<std::size_t>(planes) + 1);
+  // Planes are at most 31, so every per-plane array lives on the stack (no allocation per block).
+  constexpr std::size_t kMaxEntries = 33;
+  std::array<double, kMaxEntries> errors{};
   simd::plane_errors(b.magnitudes.data(), b.fractions.empty() ? nullptr : b.fractions.data(), b.magnitudes.size(),
                      planes, half_interval(b, 0), errors.data());
   for (int p = 0; p <= planes; ++p) out[static_cast<std::size_t>(p)].error = errors[static_cast<std::size_t>(p)];
@@ -214,9 +216,8 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
   // bits[p] = top[p] - p * samples[p] + extra[p].
   // The columns that whole SIMD chunks of quads cover are counted plane by plane in SIMD
   // (simd::quad_counts); the rest, narrow blocks' and the columns past the last chunk, so.
-  const auto n = static_cast<std::size_t>(planes) + 1;
-  std::vector<std::int64_t> quad_ends(n, 0), sample_ends(n, 0), top_ends(n, 0), extra_ends(n, 0);
-  std::vector<std::int64_t> quads(n, 0), samples(n, 0), tops(n, 0), extras(n, 0);
+  std::array<std::int64_t, kMaxEntries> quad_ends{}, sample_ends{}, top_ends{}, extra_ends{};
+  std::array<std::int64_t, kMaxEntries> quads{}, samples{}, tops{}, extras{};
   const auto w = static_cast<std::size_t>(b.width);
   const std::size_t covered =
       simd::quad_counts(b.lengths.data(), b.lengths_below_top.data(), w, static_cast<std::size_t>(b.height), planes,
@@ -251,7 +252,7 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
       }
     }
   }
-  std::vector<std::int64_t> bits(n, 0);
+  std::array<std::int64_t, kMaxEntries> bits{};
   for (int p = 0; p < planes; ++p) {
     const auto i = static_cast<std::size_t>(p);
     quad_count += quad_ends[i];

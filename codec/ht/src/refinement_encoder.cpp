@@ -258,8 +258,10 @@ RefinementSegment encode_refinement(std::span<const std::uint32_t> magnitudes, s
                          columns.data() + static_cast<std::size_t>(y0 / 4) * w);
   RefinementSegment out;
   VlcPacker magref(VlcPacker::WithoutScup{});
+  magref.reserve(samples / 8);
   code_magref(columns, magref);
   SigPropPacker sigprop;
+  sigprop.reserve(samples / 8);
   sigprop_pass(negative, width, height, columns, sigprop, out.became_significant);
   out.bytes = sigprop.finish();
   out.sigprop_bytes = out.bytes.size();
