@@ -156,11 +156,21 @@ void encode_pair_residuals(const QuadCoding* quads, int count, bool initial_row,
 
 // MagSgn bits of a quad (T.814 7.3.8): each significant sample sends the low U_q bits of v_n, or
 // U_q - 1 where e_k implies the top one. They are gathered into one word and put at once while
-// they fit (at most kWideBits).
-// `values` holds the quad's four v_n (simd::quad_magsgn).
+// they fit (at most kWideBits). `values` holds the quad's four v_n (simd::quad_magsgn).
 void put_magsgn(const std::uint32_t* values, const QuadCoding& q, MagSgnPacker& ms) {
   std::uint64_t word = 0;
   int count = 0;
+  if (4 * q.exponent_bits <= MagSgnPacker::kWideBits) {
+    // All four samples fit one word: each in turn, an insignificant one as 0 bits, without a branch
+    // on the pattern (how many samples a quad has is as unpredictable as the data).
+    for (int n = 0; n < 4; ++n) {
+      const int bits = ((q.rho >> n) & 1) * (q.exponent_bits - ((q.code.e_k >> n) & 1));
+      word |= (values[n] & ((std::uint64_t{1} << bits) - 1)) << count;
+      count += bits;
+    }
+    ms.put_wide(word, count);
+    return;
+  }
   for (unsigned rho = static_cast<unsigned>(q.rho); rho != 0; rho &= rho - 1) {
     const int n = std::countr_zero(rho);
     const int bits = q.exponent_bits - ((q.code.e_k >> n) & 1);
