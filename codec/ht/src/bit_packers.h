@@ -168,14 +168,12 @@ class VlcPacker {
     acc_ |= static_cast<std::uint64_t>(bits & (0xFFFFFFFFu >> (32 - count))) << used_;
     used_ += count;
     for (;;) {
-      // A byte after one above 0x8F whose low 7 bits are all 1 is complete with a stuffed 0.
-      if (used_ >= 7 && last_ > 0x8F && (acc_ & 0x7F) == 0x7F) {
-        emit(0x7F, 7);
-      } else if (used_ >= 8) {
-        emit(static_cast<std::uint32_t>(acc_ & 0xFF), 8);
-      } else {
-        break;
-      }
+      // A byte after one above 0x8F whose low 7 bits are all 1 is complete with a stuffed 0 (its
+      // 7 bits then suffice). Worked out without a branch: which case holds is the data's.
+      const int stuffed = (last_ > 0x8F ? 1 : 0) & ((acc_ & 0x7F) == 0x7F ? 1 : 0);
+      const int bits = 8 - stuffed;
+      if (used_ < bits) break;
+      emit(static_cast<std::uint32_t>(acc_ & ((1u << bits) - 1)), bits);
     }
   }
   bool has_partial_byte() const { return used_ > 0; }
