@@ -188,7 +188,7 @@ void put_magsgn(const std::uint32_t* values, const QuadCoding& q, MagSgnPacker& 
 // Joins MagSgn, MEL and VLC into Dcup (T.814 7.1): the MEL's and the VLC's last, partial bytes
 // share one byte where their bits agree (and that byte is not 0xFF), and Scup = MEL + VLC bytes
 // goes into the last byte and the low nibble of the one before it.
-std::vector<std::uint8_t> assemble(std::vector<std::uint8_t> magsgn, MelPacker& mel, VlcPacker& vlc) {
+std::vector<std::uint8_t> assemble(const std::vector<std::uint8_t>& magsgn, MelPacker& mel, VlcPacker& vlc) {
   std::vector<std::uint8_t>& mel_bytes = mel.bytes();
   std::vector<std::uint8_t>& vlc_bytes = vlc.bytes();
   const bool mel_pending = mel.has_partial_byte(), vlc_pending = vlc.has_partial_byte();
@@ -208,8 +208,11 @@ std::vector<std::uint8_t> assemble(std::vector<std::uint8_t> magsgn, MelPacker& 
   }
   const std::size_t scup = mel_bytes.size() + vlc_bytes.size();
   if (scup > 4079) throw std::logic_error("HT cleanup: MEL and VLC need " + std::to_string(scup) + " bytes, over 4079");
-  std::vector<std::uint8_t> out = std::move(magsgn);
-  out.reserve(out.size() + scup);
+  // A new vector of the segment's size: the streams were given room for a typical block, and a
+  // candidate keeps its codeword until rate control settles (thousands of them at once).
+  std::vector<std::uint8_t> out;
+  out.reserve(magsgn.size() + scup);
+  out.insert(out.end(), magsgn.begin(), magsgn.end());
   out.insert(out.end(), mel_bytes.begin(), mel_bytes.end());
   out.insert(out.end(), vlc_bytes.rbegin(), vlc_bytes.rend());
   out[out.size() - 1] = static_cast<std::uint8_t>(scup >> 4);
@@ -314,7 +317,7 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
     }
   }
   std::vector<std::uint8_t> ms = magsgn.finish();
-  return assemble(std::move(ms), mel.finish(), vlc);
+  return assemble(ms, mel.finish(), vlc);
 }
 
 }  // namespace codec::ht

@@ -58,6 +58,7 @@ void add_refinement_passes(const HtBlock& b, int p, t1::Distortion distortion, d
     sigprop_decrease = a * (2 * sum - static_cast<double>(segment.became_significant.size()) * a);
   }
   const std::size_t cleanup_bytes = out.data.size();
+  out.data.reserve(cleanup_bytes + segment.bytes.size());
   out.data.insert(out.data.end(), segment.bytes.begin(), segment.bytes.end());
   out.passes.push_back(t1::PassInfo{cleanup_bytes + segment.sigprop_bytes, sigprop_decrease, true});
   out.passes.push_back(t1::PassInfo{out.data.size(), magref_decrease, true});
