@@ -187,9 +187,12 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
     return;
   }
   // The sample predicts the threshold in two steps, as EBCOT's pass skipping does (tile_coder.h):
-  // the sparser presample gives a first estimate, and the rest of the sample is coded from its top
-  // plane down to the plane the length model puts at an eighth of that estimate, and one more. Its
-  // lowest planes, the costliest cleanups (the most significant samples), are left out. The
+  // the sparser presample gives a first estimate, and the rest of the sample is coded from the plane
+  // above the one the length model puts at that estimate down to the plane it puts at an eighth of
+  // it, and one more. Its lowest planes, the costliest cleanups (the most significant samples), are
+  // left out, and so are its top planes, whose slopes lie far above any threshold the prediction
+  // can reach: their hull step is the plane below's with them in it (and should the threshold rise
+  // above it after all, the extension after the allocation codes them). The
   // presample itself (which holds the lowest resolutions whole, blocks of many planes) is coded
   // alike, down from a guess: the threshold at which the model, at its nominal scale, has the
   // presample meet the target. Should a prediction fall within reach of where its blocks stop,
@@ -201,13 +204,18 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
   std::vector<std::size_t> sample_rest;
   for (std::size_t i : sample.blocks)
     if (!in_presample[i]) sample_rest.push_back(i);
-  // Down to the plane the model, at `bytes_per_bit`, puts at `reach`, and one more.
+  // Down to the plane the model, at `bytes_per_bit`, puts at `reach`, and one more; from the plane
+  // above the one it puts at kPresampleMargin times `reach` (on the 2048x2048 mosaic at 0.75 bpp,
+  // 1.5 % fewer instructions; the files at 0.1875, 0.75 and 3 bpp the same, the 38 dB one 112
+  // bytes smaller at 38.0894 dB instead of 38.0885 dB).
   auto planes_down_to = [&](double reach, double bytes_per_bit) -> PlanesOf {
     return [&coded, reach, bytes_per_bit](std::size_t b, const std::vector<ht::PlaneStatistics>& s) {
       const int top = static_cast<int>(s.size()) - 2;
       if (top < 0) return std::vector<int>{};
-      const int cut = estimated_plane(s, coded.jobs[b].weight, reach, bytes_per_bit);
-      return planes_between(cut < 0 ? top : std::max(0, cut - 1), top);
+      const double weight = coded.jobs[b].weight;
+      const int cut = estimated_plane(s, weight, reach, bytes_per_bit);
+      const int high = estimated_plane(s, weight, reach * kPresampleMargin, bytes_per_bit);
+      return planes_between(cut < 0 ? top : std::max(0, cut - 1), high < 0 ? top : std::min(top, high + 1));
     };
   };
   // The presample's blocks stay loaded until the prediction is made (it is few blocks).
