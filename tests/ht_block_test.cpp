@@ -666,6 +666,13 @@ TEST(HtBlock, FloatLoadsMeasureTheIndicesBitLengths) {
   const int w = 64, h = static_cast<int>(values.size() / 64);
   for (const float inverse_step : {1.0f, 0.37f}) {
     const auto b = codec::ht::load_ht_block(codec::t1::FloatBlock{values.data(), w, w, h, inverse_step});
+    // Rate control skips planes on the load's energy bound: it must be no less than the energy.
+    double energy = 0;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const double v = b.magnitudes[i] + b.fractions[i] / 256.0;
+      energy += v * v;
+    }
+    EXPECT_GE(b.energy_bound, energy) << "x " << inverse_step;
     for (std::size_t i = 0; i < values.size(); ++i) {
       const std::uint32_t m = b.magnitudes[i];
       const int l = static_cast<int>(std::bit_width(m));
@@ -823,6 +830,16 @@ TEST(HtBlock, PlaneStatisticsMatchTheirDefinitions) {
           EXPECT_EQ(got[p].significant_quads, want[p].significant_quads);
           EXPECT_EQ(got[p].significant_samples, want[p].significant_samples);
           EXPECT_EQ(got[p].magnitude_bits, want[p].magnitude_bits);
+        }
+        // In two steps with the errors from a plane up: the same there, that plane's below it.
+        if (planes < 2) continue;
+        const int lowest = planes / 2;
+        auto partial = codec::ht::plane_counts(codec::ht::load_ht_block(block, w, h, fractions));
+        codec::ht::add_plane_errors(codec::ht::load_ht_block(block, w, h, fractions), partial, lowest);
+        for (std::size_t p = 0; p < want.size(); ++p) {
+          const std::size_t from = std::max(p, static_cast<std::size_t>(lowest));
+          EXPECT_EQ(partial[p].error, got[from].error) << "plane " << p << ", errors from " << lowest;
+          EXPECT_EQ(partial[p].magnitude_bits, got[p].magnitude_bits) << "plane " << p;
         }
       }
     }

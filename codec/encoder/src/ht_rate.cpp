@@ -61,6 +61,26 @@ double slope_bound(const std::vector<ht::PlaneStatistics>& stats, double weight,
   return bound;
 }
 
+// Below which plane a block's plane errors need not be known at `threshold`: the plane where the
+// cleanup, on the model's lengths (at kModelBytesMargin of them, as slope_bound), would buy less
+// than kUsefulSlope times the threshold per byte even were it to buy the block's whole energy (no
+// more than `energy_bound`). A point on the hull buys at least its own hull slope per byte from
+// nothing, so such planes' points lie far below the threshold; the per-plane errors, the costliest
+// statistics, are summed only from there up (on the 2048x2048 mosaic at 0.75 bpp, 1.4 % fewer
+// instructions).
+constexpr double kUsefulSlope = 0.25;
+int lowest_useful_plane(const std::vector<ht::PlaneStatistics>& counts, double energy_bound, double weight,
+                        double threshold, double bytes_per_bit) {
+  const int planes = static_cast<int>(counts.size()) - 1;
+  const double most_bytes = energy_bound * weight / (kUsefulSlope * threshold);
+  for (int p = planes - 1; p >= 0; --p) {
+    const double bytes = std::max(kLeastCleanupBytes,
+                                  kModelBytesMargin * bytes_per_bit * model_bits(counts[static_cast<std::size_t>(p)]));
+    if (bytes > most_bytes) return p;
+  }
+  return 0;
+}
+
 // A block's cleanups as estimated truncation points, highest plane first (as truncation_points
 // orders the coded ones): lengths from the model, distortion decreases exact.
 std::vector<t1::PassInfo> estimated_points(const std::vector<ht::PlaneStatistics>& stats, double bytes_per_bit) {
@@ -288,7 +308,9 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
     const std::size_t b = rest[k];
     const BlockJob& job = coded.jobs[b];
     const ht::HtBlock& block = worker_block(coded, job, params);
-    const std::vector<ht::PlaneStatistics> stats = ht::plane_statistics(block);
+    std::vector<ht::PlaneStatistics> stats = ht::plane_counts(block);
+    ht::add_plane_errors(block, stats,
+                         lowest_useful_plane(stats, block.energy_bound, job.weight, threshold, bytes_per_bit));
     const double energy = stats.back().error;
     HtCandidates& c = coded.ht_candidates[b];
     if (block.bit_planes > 0 && (c.slope_bound = slope_bound(stats, job.weight, bytes_per_bit)) < threshold) {

@@ -18,7 +18,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 std::uint32_t QuantizeRow(const float* HWY_RESTRICT row, std::size_t n, float inverse_step,
                           std::uint32_t* HWY_RESTRICT magnitude, std::uint8_t* HWY_RESTRICT negative,
                           std::uint8_t* HWY_RESTRICT fraction, std::uint8_t* HWY_RESTRICT length,
-                          std::uint8_t* HWY_RESTRICT length_below_top) {
+                          std::uint8_t* HWY_RESTRICT length_below_top, float* HWY_RESTRICT squares) {
   const hn::ScalableTag<float> df;
   const hn::RebindToSigned<decltype(df)> di;
   const hn::RebindToUnsigned<decltype(df)> du;
@@ -37,12 +37,14 @@ std::uint32_t QuantizeRow(const float* HWY_RESTRICT row, std::size_t n, float in
     return hn::Max(hn::Sub(hn::ShiftRight<23>(hn::BitCast(di, value)), exponent_bias), zero);
   };
   auto any = hn::Zero(di);
+  auto square_sum = hn::Zero(df);
   std::size_t i = 0;
   for (; i + N <= n; i += N) {
     const auto c = hn::LoadU(df, row + i);
     auto m = hn::Mul(hn::Abs(c), inverse);
     m = hn::IfThenElse(hn::Lt(m, largest), m, largest);  // NaN: the clamp, as scaled_magnitude
-    const auto q = hn::ConvertTo(di, m);                 // m >= 0: truncation is the floor
+    square_sum = hn::MulAdd(m, m, square_sum);
+    const auto q = hn::ConvertTo(di, m);  // m >= 0: truncation is the floor
     const auto f = hn::ConvertTo(di, hn::Mul(hn::Sub(m, hn::ConvertTo(df, q)), to_256ths));
     hn::StoreU(hn::BitCast(du, q), du, magnitude + i);
     hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(f, zero), top)), d8, fraction + i);
@@ -57,8 +59,11 @@ std::uint32_t QuantizeRow(const float* HWY_RESTRICT row, std::size_t n, float in
   hn::Store(any, di, lanes);
   std::uint32_t all = 0;
   for (std::size_t k = 0; k < N; ++k) all |= static_cast<std::uint32_t>(lanes[k]);
+  float sum = hn::GetLane(hn::SumOfLanes(df, square_sum));
   for (; i < n; ++i) {
     const std::int32_t index = t1::quantize(row[i], inverse_step, fraction[i]);
+    const double value = static_cast<double>(index < 0 ? -index : index) + fraction[i] / 256.0;
+    sum += static_cast<float>(value * value);
     const std::uint32_t m = static_cast<std::uint32_t>(index < 0 ? -index : index);
     magnitude[i] = m;
     negative[i] = index < 0 ? 1 : 0;
@@ -67,6 +72,7 @@ std::uint32_t QuantizeRow(const float* HWY_RESTRICT row, std::size_t n, float in
     length_below_top[i] = static_cast<std::uint8_t>(std::bit_width(l > 0 ? m ^ (std::uint32_t{1} << (l - 1)) : 0u));
     all |= m;
   }
+  *squares = sum;
   return all;
 }
 
@@ -125,7 +131,7 @@ CleanupErrors CleanupErrorSums(const std::uint32_t* HWY_RESTRICT magnitude, cons
 }
 
 void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const std::uint8_t* HWY_RESTRICT fraction, std::size_t n,
-                 int planes, double half_at_zero, double* HWY_RESTRICT error) {
+                 int planes, double half_at_zero, int lowest_plane, double* HWY_RESTRICT error) {
   const hn::ScalableTag<double> dd;
   const hn::Rebind<std::int32_t, decltype(dd)> di;  // as many int32 lanes as doubles
   const hn::RebindToUnsigned<decltype(di)> du;
@@ -202,7 +208,7 @@ void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const std::uint8_t
     for (int p = 0; p <= planes; ++p) {
       whole_so_far += hn::GetLane(hn::SumOfLanes(dd, hn::Load(dd, whole + static_cast<std::size_t>(p) * N)));
       error[p] += whole_so_far;
-      if (p >= longest_of_all) continue;
+      if (p >= longest_of_all || p < lowest_plane) continue;
       // A sample of magnitude m and value v = m + offset (its fraction, in [0, 1)) is significant at p
       // when v >= 2^p, and leaves v - floor(v / 2^p) 2^p - half(p) = (m mod 2^p) + offset - half(p); an
       // insignificant one leaves v.
@@ -233,7 +239,7 @@ void PlaneErrors(const std::uint32_t* HWY_RESTRICT magnitude, const std::uint8_t
   }
   for (; i < n; ++i) {
     const double value = static_cast<double>(magnitude[i]) + (fraction ? fraction[i] / 256.0 : 0.0);
-    for (int p = 0; p <= planes; ++p) {
+    for (int p = lowest_plane; p <= planes; ++p) {
       const auto low_bits = static_cast<std::uint32_t>((std::uint64_t{1} << p) - 1);
       const double left =
           magnitude[i] <= low_bits ? value : value - (static_cast<double>(magnitude[i] & ~low_bits) + halves[p]);
@@ -528,14 +534,14 @@ CleanupErrors cleanup_errors(const std::uint32_t* magnitude, const std::uint8_t*
 
 std::uint32_t quantize_row(const float* row, std::size_t n, float inverse_step, std::uint32_t* magnitude,
                            std::uint8_t* negative, std::uint8_t* fraction, std::uint8_t* length,
-                           std::uint8_t* length_below_top) {
+                           std::uint8_t* length_below_top, float* squares) {
   return HWY_DYNAMIC_DISPATCH(QuantizeRow)(row, n, inverse_step, magnitude, negative, fraction, length,
-                                           length_below_top);
+                                           length_below_top, squares);
 }
 
 void plane_errors(const std::uint32_t* magnitude, const std::uint8_t* fraction, std::size_t n, int planes,
-                  double half_at_zero, double* error) {
-  HWY_DYNAMIC_DISPATCH(PlaneErrors)(magnitude, fraction, n, planes, half_at_zero, error);
+                  double half_at_zero, int lowest_plane, double* error) {
+  HWY_DYNAMIC_DISPATCH(PlaneErrors)(magnitude, fraction, n, planes, half_at_zero, lowest_plane, error);
 }
 
 }  // namespace codec::ht::simd

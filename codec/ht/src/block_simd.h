@@ -8,10 +8,11 @@ namespace codec::ht::simd {
 // A row of float coefficients quantised as t1::quantize(c, inverse_step, fraction) does, bit for
 // bit: magnitude = the index's magnitude, negative = 1 where the index is negative, fraction =
 // floor(256 * what the index drops), clamped to 0..255; and the magnitudes' bit lengths as
-// bit_lengths gives them. Returns the OR of the magnitudes.
+// bit_lengths gives them. Returns the OR of the magnitudes; `squares` receives the sum of the
+// squared scaled magnitudes |c| * inverse_step (each at least its index plus fraction), in float.
 std::uint32_t quantize_row(const float* row, std::size_t n, float inverse_step, std::uint32_t* magnitude,
                            std::uint8_t* negative, std::uint8_t* fraction, std::uint8_t* length,
-                           std::uint8_t* length_below_top);
+                           std::uint8_t* length_below_top, float* squares);
 
 // What a cleanup on plane p leaves, over all n samples, with v = magnitude + fraction / 256 (or
 // the magnitude alone when `fraction` is null) and e_p(v) the residual after a cleanup on p
@@ -32,8 +33,9 @@ CleanupErrors cleanup_errors(const std::uint32_t* magnitude, const std::uint8_t*
 // 2^(p-1) for p > 0 and `half_at_zero` for p = 0. `fraction` holds each sample's fraction below its
 // index in 256ths (null: none, reversible). Magnitudes are below 2^31, planes at most 31.
 // error[planes] (the energy) is exact; the others, estimates, are within 1e-5 of it (float sums).
+// Planes below `lowest_plane` are not computed (their entries are left meaningless).
 void plane_errors(const std::uint32_t* magnitude, const std::uint8_t* fraction, std::size_t n, int planes,
-                  double half_at_zero, double* error);
+                  double half_at_zero, int lowest_plane, double* error);
 
 // Per magnitude (each below 2^31), its bit length and that of the magnitude without its top bit
 // (HtBlock::lengths, lengths_below_top).

@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -95,6 +96,7 @@ void size_buffers(HtBlock& b, int width, int height, bool with_fractions) {
   const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   b.width = width;
   b.height = height;
+  b.energy_bound = std::numeric_limits<double>::infinity();  // a float load sets its own
   b.magnitudes.resize(n);
   b.negative.resize(n);
   b.lengths.resize(n);
@@ -143,13 +145,18 @@ void load_ht_block(const t1::FloatBlock& block, HtBlock& b) {
   for (int y = 0; y < block.height; ++y)
     for (std::size_t x = 0; x < w; x += kLine) __builtin_prefetch(block.origin + y * block.stride + x);
   std::uint32_t all = 0;
+  double squares = 0;
   for (int y = 0; y < block.height; ++y) {
     const std::size_t base = static_cast<std::size_t>(y) * w;
+    float row_squares = 0;
     all |= simd::quantize_row(block.origin + y * block.stride, w, block.inverse_step, b.magnitudes.data() + base,
                               b.negative.data() + base, b.fractions.data() + base, b.lengths.data() + base,
-                              b.lengths_below_top.data() + base);
+                              b.lengths_below_top.data() + base, &row_squares);
+    squares += row_squares;
   }
   b.bit_planes = static_cast<int>(std::bit_width(all));
+  // A float sum of at most 1024 non-negative terms is within 1024 * 2^-24 (6e-5) of the exact one.
+  b.energy_bound = squares * (1 + 1e-4);
 }
 
 HtBlock load_ht_block(const t1::IntegerBlock& block) {
@@ -194,17 +201,11 @@ t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int 
   return out;
 }
 
-std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
-  const int planes = b.bit_planes;
-  std::vector<PlaneStatistics> out(static_cast<std::size_t>(planes) + 1);
-  // Errors, plane by plane over all samples in SIMD: a magnitude below 2^p leaves its whole value,
-  // one at or above it its residual at p.
+std::vector<PlaneStatistics> plane_counts(const HtBlock& b) {
   // Planes are at most 31, so every per-plane array lives on the stack (no allocation per block).
   constexpr std::size_t kMaxEntries = 33;
-  std::array<double, kMaxEntries> errors{};
-  simd::plane_errors(b.magnitudes.data(), b.fractions.empty() ? nullptr : b.fractions.data(), b.magnitudes.size(),
-                     planes, half_interval(b, 0), errors.data());
-  for (int p = 0; p <= planes; ++p) out[static_cast<std::size_t>(p)].error = errors[static_cast<std::size_t>(p)];
+  const int planes = b.bit_planes;
+  std::vector<PlaneStatistics> out(static_cast<std::size_t>(planes) + 1);
   // Counts, quad by quad (T.814 7.3.1: 2x2 quads, samples outside the block insignificant). On plane
   // p a quad whose largest magnitude L has bit length l > p is significant; each of its samples of
   // bit length n > p is, and sends U = bit_width(2 (L >> p) - 1) = l - p + [p < t] bits (T.814
@@ -266,6 +267,25 @@ std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
     out[static_cast<std::size_t>(p)].significant_samples = static_cast<double>(samples[static_cast<std::size_t>(p)]);
     out[static_cast<std::size_t>(p)].magnitude_bits = static_cast<double>(bits[static_cast<std::size_t>(p)]);
   }
+  return out;
+}
+
+void add_plane_errors(const HtBlock& b, std::vector<PlaneStatistics>& statistics, int lowest_plane) {
+  const int planes = b.bit_planes;
+  // Errors, plane by plane over all samples in SIMD: a magnitude below 2^p leaves its whole value,
+  // one at or above it its residual at p.
+  constexpr std::size_t kMaxEntries = 33;
+  std::array<double, kMaxEntries> errors{};
+  lowest_plane = std::clamp(lowest_plane, 0, planes);
+  simd::plane_errors(b.magnitudes.data(), b.fractions.empty() ? nullptr : b.fractions.data(), b.magnitudes.size(),
+                     planes, half_interval(b, 0), lowest_plane, errors.data());
+  for (int p = 0; p <= planes; ++p)
+    statistics[static_cast<std::size_t>(p)].error = errors[static_cast<std::size_t>(std::max(p, lowest_plane))];
+}
+
+std::vector<PlaneStatistics> plane_statistics(const HtBlock& b) {
+  std::vector<PlaneStatistics> out = plane_counts(b);
+  add_plane_errors(b, out, 0);
   return out;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -47,6 +48,10 @@ struct HtBlock {
   // exponent at any cleanup plane p follows from them (T.814 7.3.7: L - p + [T > p] where L > p),
   // so each candidate cleanup needs no bit scan of its own.
   std::vector<std::uint8_t> lengths, lengths_below_top;
+  // No less than the block's energy (the sum of (magnitude + fraction / 256)^2), known from the load
+  // at no cost: for a float block the sum of its scaled coefficients' squares (each at least its
+  // index and fraction), in float with a margin over its rounding; for an integer block infinity.
+  double energy_bound = std::numeric_limits<double>::infinity();
 };
 
 HtBlock load_ht_block(std::span<const std::int32_t> coefficients, int width, int height,
@@ -88,5 +93,12 @@ struct PlaneStatistics {
 // One entry per plane p = 0 .. bit_planes - 1, then one for nothing coded (error: the block's
 // energy, counts 0). Linear in the samples times the bit-planes they use.
 std::vector<PlaneStatistics> plane_statistics(const HtBlock& block);
+
+// The same in two steps, for a caller that learns from the counts which planes it needs errors
+// for: plane_counts gives the counts (errors 0); add_plane_errors then fills in the errors of the
+// planes from `lowest_plane` up (the energy always), and gives each plane below it the error of
+// `lowest_plane` (as if it bought nothing more: such a point is dominated, never on a hull).
+std::vector<PlaneStatistics> plane_counts(const HtBlock& block);
+void add_plane_errors(const HtBlock& block, std::vector<PlaneStatistics>& statistics, int lowest_plane);
 
 }  // namespace codec::ht
