@@ -14,10 +14,11 @@ namespace codec {
 // Rate control for HT code-blocks (README, "HT rate control"). An HT block's truncation points are
 // cleanups coded from different bit-planes (ht_candidates.h), each a codeword of its own, so
 // coding them all would cost a cleanup per plane. Instead, as EBCOT's pass skipping does, a
-// sample of the blocks is coded from every plane and predicts the final slope threshold; every
-// other block then gets its cleanups' distortions exactly and their lengths estimated from
-// counts of significant quads and magnitude bits (ht::plane_statistics, scaled by what the
-// sample's cleanups really took), and only the cleanups from the plane that estimate picks at
+// sample of the blocks is coded around and below where a first estimate cuts them and predicts the
+// final slope threshold; every other block then gets its cleanups' distortions (float sums of
+// their definitions) and lengths estimated, the lengths from counts of significant quads and
+// magnitude bits (ht::plane_statistics, scaled by what the sample's cleanups really took), and
+// only the cleanups from the plane that estimate picks at
 // the threshold, the plane above it and, where the estimate comes near taking it, the plane below
 // are coded. After the allocation, blocks whose choice lies at the edge of what was coded get the
 // next planes coded (ht_blocks_at_edges) and the allocation is redone.
