@@ -82,7 +82,8 @@ int lowest_useful_plane(const std::vector<ht::PlaneStatistics>& counts, double e
 }
 
 // A block's cleanups as estimated truncation points, highest plane first (as truncation_points
-// orders the coded ones): lengths from the model, distortion decreases exact.
+// orders the coded ones): lengths from the model, distortion decreases from the plane statistics'
+// error estimates.
 std::vector<t1::PassInfo> estimated_points(const std::vector<ht::PlaneStatistics>& stats, double bytes_per_bit) {
   const int planes = static_cast<int>(stats.size()) - 1;
   std::vector<t1::PassInfo> points;

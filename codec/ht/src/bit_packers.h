@@ -110,11 +110,7 @@ class MelEncoder {
   void reserve(std::size_t bytes) { packer_.reserve(bytes); }
   void encode(bool symbol) {
     if (!symbol) {
-      if (++run_ == (1 << kExponent[state_])) {
-        packer_.put_bit(1);
-        run_ = 0;
-        if (state_ < 12) ++state_;
-      }
+      if (++run_ == full_run()) end_full_run();
       return;
     }
     packer_.put_bit(0);
@@ -122,18 +118,17 @@ class MelEncoder {
     run_ = 0;
     if (state_ > 0) --state_;
   }
-  // `count` 0 symbols, as many calls of encode(false) would code them.
+  // `count` 0 symbols, as many calls of encode(false) would code them (encode keeps its one-symbol
+  // step: it is the cleanup's commonest call).
   void encode_zeros(int count) {
     while (count > 0) {
-      const int room = (1 << kExponent[state_]) - run_;
+      const int room = full_run() - run_;
       if (count < room) {
         run_ += count;
         return;
       }
       count -= room;
-      packer_.put_bit(1);
-      run_ = 0;
-      if (state_ < 12) ++state_;
+      end_full_run();
     }
   }
   // A pending run is closed with a 1 (a full run): the decoder reads zeros past the last symbol
@@ -146,6 +141,13 @@ class MelEncoder {
 
  private:
   static constexpr int kExponent[13] = {0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 4, 5};
+  // A run of 2^E[k] 0 symbols sends a 1 and raises the state.
+  int full_run() const { return 1 << kExponent[state_]; }
+  void end_full_run() {
+    packer_.put_bit(1);
+    run_ = 0;
+    if (state_ < 12) ++state_;
+  }
   MelPacker packer_;
   int state_ = 0, run_ = 0;
 };

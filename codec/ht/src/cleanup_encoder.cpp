@@ -39,7 +39,7 @@ class SampleGrid {
     // Every cell is written, the borders and what follows the last row with 0, so the buffer
     // needs no clearing first (it held another block's cells, in another layout).
     const std::size_t rows_end = stride_ * (static_cast<std::size_t>(height) + 1);
-    exponents_.resize(rows_end + stride_ + kPairOverread);
+    exponents_.resize(rows_end + stride_ + kRowOverread);
     cells_ = exponents_.data();
     std::memset(cells_, 0, stride_);
     for (int y = 0; y < height; ++y) {
@@ -51,7 +51,7 @@ class SampleGrid {
       for (int x = 0; x < width; ++x) cells[x] = exponent(length[x], below_top[x], p);
       std::memset(cells + width, 0, kBorder);
     }
-    std::memset(cells_ + rows_end, 0, stride_ + kPairOverread);
+    std::memset(cells_ + rows_end, 0, stride_ + kRowOverread);
   }
   // The cell of (x, y), the cells of its row's next samples following it.
   const std::uint8_t* cells_at(int x, int y) const { return cells_ + cell(x, y); }
@@ -64,7 +64,7 @@ class SampleGrid {
   static constexpr std::size_t kBorder = 2;
   // simd::quad_row_analysis reads whole vectors of cells past a row's last quad: the next rows',
   // or for the last row these bytes.
-  static constexpr std::size_t kPairOverread = simd::kQuadRowOverread;
+  static constexpr std::size_t kRowOverread = simd::kQuadRowOverread;
   std::size_t index(int x, int y) const {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
   }
@@ -78,6 +78,11 @@ class SampleGrid {
   // address (a call to __tls_get_addr in a shared library) at reads in the quad loop.
   std::uint8_t* cells_ = nullptr;
 };
+
+// simd::quad_row_analysis writes each quad's index in VlcEncodingTable's layout.
+static_assert(VlcEncodingTable::index(5, 9, true, 3) == (5u << 9 | 9u << 5 | 1u << 4 | 3u) &&
+              VlcEncodingTable::index(7, 15, false, 0) == (7u << 9 | 15u << 5) &&
+              VlcEncodingTable::rho_of(5u << 9 | 9u << 5) == 9 && VlcEncodingTable::context_of(5u << 9 | 9u << 5) == 5);
 
 struct QuadCoding {
   int rho = 0;            // significance pattern
@@ -286,7 +291,7 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
         // Neither quad has a significant sample: each sends its context's codeword for rho = 0, or
         // a MEL 0 in context 0, and no residual or MagSgn bit (most quads of a low-rate cleanup).
         for (int k = 0; k < count; ++k) {
-          if (index[k] == 0) {
+          if (VlcEncodingTable::context_of(index[k]) == 0) {
             mel.encode(false);
           } else {
             const VlcCode& code = table.at(index[k]);

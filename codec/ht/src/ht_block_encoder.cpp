@@ -201,9 +201,11 @@ t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int 
   return out;
 }
 
+// Planes are at most 31, so every per-plane array of the statistics lives on the stack (no
+// allocation per block): 32 planes and the entry for nothing coded.
+constexpr std::size_t kMaxEntries = 33;
+
 std::vector<PlaneStatistics> plane_counts(const HtBlock& b) {
-  // Planes are at most 31, so every per-plane array lives on the stack (no allocation per block).
-  constexpr std::size_t kMaxEntries = 33;
   const int planes = b.bit_planes;
   std::vector<PlaneStatistics> out(static_cast<std::size_t>(planes) + 1);
   // Counts, quad by quad (T.814 7.3.1: 2x2 quads, samples outside the block insignificant). On plane
@@ -274,7 +276,6 @@ void add_plane_errors(const HtBlock& b, std::vector<PlaneStatistics>& statistics
   const int planes = b.bit_planes;
   // Errors, plane by plane over all samples in SIMD: a magnitude below 2^p leaves its whole value,
   // one at or above it its residual at p.
-  constexpr std::size_t kMaxEntries = 33;
   std::array<double, kMaxEntries> errors{};
   lowest_plane = std::clamp(lowest_plane, 0, planes);
   simd::plane_errors(b.magnitudes.data(), b.fractions.empty() ? nullptr : b.fractions.data(), b.magnitudes.size(),

@@ -173,28 +173,44 @@ void sigprop_pass(std::span<const std::uint8_t> negative, int width, int height,
   became.assign(became_at, became_at + became_count);
 }
 
+// The MagRef pass' bits gathered into words and put 32 at a time.
+class MagRefBits {
+ public:
+  explicit MagRefBits(VlcPacker& out) : out_(out) {}
+  // `count` more bits (at most 32), `packed` holding them lowest first and nothing above.
+  void add(std::uint64_t packed, int count) {
+    bits_ |= packed << count_;
+    count_ += count;
+    if (count_ >= 32) {
+      out_.put(static_cast<std::uint32_t>(bits_), 32);
+      bits_ >>= 32;
+      count_ -= 32;
+    }
+  }
+  void finish() {
+    if (count_ > 0) out_.put(static_cast<std::uint32_t>(bits_), count_);
+  }
+
+ private:
+  VlcPacker& out_;
+  std::uint64_t bits_ = 0;  // pending, fewer than 32
+  int count_ = 0;
+};
+
 // The MagRef pass on plane q = p - 1 (T.814 7.5): stripes of four rows, column by column, top to
 // bottom, bit q of every sample significant in the cleanup (a magnitude at or above 2^p). Each
-// column's bits come from its simd::stripe_columns byte and a table, and are packed 32 at a time
-// (`bits`, `count`: what is pending, fewer than 32).
-void magref_columns(std::span<const std::uint8_t> columns, std::uint64_t& bits, int& count, VlcPacker& out) {
+// column's bits come from its simd::stripe_columns byte and a table.
+void magref_columns(std::span<const std::uint8_t> columns, MagRefBits& bits) {
   for (const std::uint8_t column : columns) {
     const std::uint8_t entry = kColumnBits[column];
-    bits |= static_cast<std::uint64_t>(entry & 15) << count;
-    count += entry >> 4;
-    if (count >= 32) {
-      out.put(static_cast<std::uint32_t>(bits), 32);
-      bits >>= 32;
-      count -= 32;
-    }
+    bits.add(entry & 15, entry >> 4);
   }
 }
 
 void magref_pass(std::span<const std::uint8_t> columns, VlcPacker& out) {
-  std::uint64_t bits = 0;
-  int count = 0;
-  magref_columns(columns, bits, count, out);
-  if (count > 0) out.put(static_cast<std::uint32_t>(bits), count);
+  MagRefBits bits(out);
+  magref_columns(columns, bits);
+  bits.finish();
 }
 
 #if defined(__GNUC__) && defined(__x86_64__)
@@ -203,23 +219,16 @@ void magref_pass(std::span<const std::uint8_t> columns, VlcPacker& out) {
 // table takes eight lookups.
 [[gnu::target("bmi2,popcnt")]] void magref_pass_bmi2(std::span<const std::uint8_t> columns, VlcPacker& out) {
   constexpr std::uint64_t kLowNibbles = 0x0F0F0F0F0F0F0F0Full;
-  std::uint64_t bits = 0;
-  int count = 0;
+  MagRefBits bits(out);
   std::size_t i = 0;
   for (; i + 8 <= columns.size(); i += 8) {
     std::uint64_t eight;
     std::memcpy(&eight, columns.data() + i, sizeof eight);
     const std::uint64_t significant = eight & kLowNibbles;
-    bits |= _pext_u64((eight >> 4) & kLowNibbles, significant) << count;  // at most 32 bits, count < 32
-    count += static_cast<int>(_mm_popcnt_u64(significant));
-    if (count >= 32) {
-      out.put(static_cast<std::uint32_t>(bits), 32);
-      bits >>= 32;
-      count -= 32;
-    }
+    bits.add(_pext_u64((eight >> 4) & kLowNibbles, significant), static_cast<int>(_mm_popcnt_u64(significant)));
   }
-  magref_columns(columns.subspan(i), bits, count, out);
-  if (count > 0) out.put(static_cast<std::uint32_t>(bits), count);
+  magref_columns(columns.subspan(i), bits);
+  bits.finish();
 }
 
 // PEXT where it is fast: not on AMD's family 17h (Zen, Zen 2), which runs it in microcode, some

@@ -19,11 +19,9 @@ struct VlcCode {
 class VlcEncodingTable {
  public:
   explicit VlcEncodingTable(QuadRowKind kind);
-  VlcCode lookup(int context, int rho, bool has_residual, int at_top) const {
-    return codes_[index(context, rho, has_residual, has_residual ? at_top : 0)];
-  }
-  // The codes by index (simd::quad_row_analysis computes the indices): context << 9 | rho << 5 |
-  // has_residual << 4 | at_top, at_top 0 without a residual.
+  // The codes by index (simd::quad_row_analysis computes the indices, cleanup_encoder.cpp checks
+  // that the two layouts agree): context << 9 | rho << 5 | has_residual << 4 | at_top, at_top 0
+  // without a residual.
   static constexpr std::size_t index(int context, int rho, bool has_residual, int at_top) {
     return static_cast<std::size_t>((((context << 4 | rho) << 1 | (has_residual ? 1 : 0)) << 4) | at_top);
   }
