@@ -187,6 +187,7 @@ void print_timing(const std::string& mode, const gpuj2k::EncodeReport& r, double
                                     {"quantization + tier-1", r.tier1_ms},
                                     {"rate control", r.rate_control_ms},
                                     {"tier-2", r.tier2_ms},
+                                    {"release", r.release_ms},
                                     {"output", output_ms}};
   cli::TimingReport report{"j2kenc", r.dwt_backend, r.dwt_reason, r.threads, stages, measured_ms, {}};
   report.counts.emplace_back("recoded_blocks", r.recoded_blocks);

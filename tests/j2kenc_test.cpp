@@ -2,6 +2,7 @@
 // answered with one line on stderr, a non-zero exit and no output file.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -114,14 +115,18 @@ TEST_F(J2kencCli, LossyRateTargetsThroughTheCommandLine) {
   }
 }
 
-// --timing=json: every stage is there and they add up to the measured total within 5 %.
+// --timing=json: every stage is there and they add up to the measured total. The margin, as in
+// j2kdec_test, is for the option handling and process-level work outside the stages, which other
+// processes on a 2-core CI machine can delay; a missing stage (tier-1 is a third of this encode or
+// more) still shows. Before the release stage existed, freeing the planes was 5 % of the total
+// under ASan and 7 % of a 4096x4096 encode.
 TEST_F(J2kencCli, TimingStagesAddUpToTheTotal) {
   const fs::path big = dir / "big.png", out = dir / "t.j2k";
   imageio::write_image(big.string(), testimages::generate(testimages::Pattern::Mix, 640, 480, 3, 8));
   const auto r = j2kenc("-i '" + big.string() + "' -o '" + out.string() + "' --rate 1 --dwt cpu -q --timing=json", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* stage : {"input read", "GL context creation", "shader compilation", "upload", "DWT compute",
-                            "download", "quantization + tier-1", "rate control", "tier-2", "output"})
+                            "download", "quantization + tier-1", "rate control", "tier-2", "release", "output"})
     EXPECT_NE(r.err.find(std::string("\"") + stage + "\""), std::string::npos) << stage << " missing from " << r.err;
   auto number_after = [&](const std::string& key) {
     const auto at = r.err.find("\"" + key + "\": ");
@@ -130,7 +135,8 @@ TEST_F(J2kencCli, TimingStagesAddUpToTheTotal) {
   };
   const double sum = number_after("sum_ms"), total = number_after("total_ms");
   EXPECT_GT(total, 0);
-  EXPECT_NEAR(sum, total, 0.05 * total);
+  EXPECT_LE(sum, total + 0.01);
+  EXPECT_NEAR(sum, total, std::max(0.2 * total, 5.0)) << r.err;
 }
 
 TEST_F(J2kencCli, BadInputGetsOneLine) {

@@ -207,6 +207,7 @@ void fill_report(const codec::EncodeReport& r, const codec::SourceImage& image, 
   out.tier1_ms = r.times.tier1;
   out.rate_control_ms = r.times.rate_control;
   out.tier2_ms = r.times.tier2;
+  out.release_ms = r.times.release;
   out.recoded_blocks = r.recoded_blocks;
 }
 

@@ -330,7 +330,7 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
   report.dwt_reason = dwt.reason;
   report.times.gl_context = dwt.gl_context_ms;
   report.times.shader_compile = dwt.shader_compile_ms;
-  dwt_cpu::CpuBackend reversible_dwt(pool);
+  std::optional<dwt_cpu::CpuBackend> reversible_dwt(std::in_place, pool);  // released before the pool
 
   int peak_bits = 0;
   for (const SourceComponent& c : image.components) peak_bits = std::max(peak_bits, c.precision);
@@ -347,7 +347,7 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
   for (int t = 0; t < count; ++t) {
     const Tier1Target target =
         tier1_target(build_tile(plan.grid, plan.sampling, plan.styles, t), params, samples, peak);
-    tiles.push_back(code_tile(image, consumable, plan, params, t, *dwt.backend, reversible_dwt, pool, report.times,
+    tiles.push_back(code_tile(image, consumable, plan, params, t, *dwt.backend, *reversible_dwt, pool, report.times,
                               target, blocks_before, all_blocks));
     blocks_before += tiles.back().blocks.size();
   }
@@ -389,6 +389,20 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
   const auto tier2_start = Clock::now();
   std::vector<std::uint8_t> bytes = assemble(passes);
   report.times.tier2 = since(tier2_start);
+
+  // Stage 7: the memory, the DWT backend (a GL context made for this image) and the worker threads
+  // handed back, timed so that the stages account for the whole encode.
+  const auto release_start = Clock::now();
+  tiles = {};
+  if (consumable != nullptr) {
+    // Given up by the caller, who keeps its size and components.
+    for (SourceComponent& c : consumable->components) c.samples = {};
+    consumable->packed.reset();
+  }
+  dwt.backend.reset();
+  reversible_dwt.reset();
+  own_pool.reset();
+  report.times.release = since(release_start);
   if (report_out) *report_out = std::move(report);
   return bytes;
 }

@@ -109,7 +109,7 @@ struct EncodeReport {
   std::vector<std::string> notices;
   // Milliseconds per stage.
   double read_ms = 0, setup_ms = 0, gl_context_ms = 0, shader_compile_ms = 0, level_shift_ms = 0, upload_ms = 0,
-         dwt_ms = 0, download_ms = 0, tier1_ms = 0, rate_control_ms = 0, tier2_ms = 0;
+         dwt_ms = 0, download_ms = 0, tier1_ms = 0, rate_control_ms = 0, tier2_ms = 0, release_ms = 0;
   std::size_t recoded_blocks = 0;  // pass skipping: blocks coded again after the allocation
 };
 
