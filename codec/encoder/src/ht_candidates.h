@@ -30,6 +30,11 @@ struct HtCandidates {
   // Skipped blocks: an upper bound of the slope any of its points could have (ht_rate.cpp's
   // slope_bound), against which rate control checks whether skipping it was too soon.
   double slope_bound = 0;
+  // Where the cleanup above the estimated plane was left uncoded (ht_rate.cpp, kAboveReach): that
+  // plane, and the estimated slope of its cleanup's step from the hull point above it; -1 and 0
+  // where it was not.
+  int above_left_plane = -1;
+  double above_left_slope = 0;
 
   int highest_coded() const;  // -1: none coded
   int lowest_coded() const;   // -1: none coded

@@ -18,10 +18,10 @@ namespace codec {
 // final slope threshold; every other block then gets its cleanups' distortions (float sums of
 // their definitions) and lengths estimated, the lengths from counts of significant quads and
 // magnitude bits (ht::plane_statistics, scaled by what the sample's cleanups really took), and
-// only the cleanups from the plane that estimate picks at
-// the threshold, the plane above it and, where the estimate comes near taking it, the plane below
-// are coded. After the allocation, blocks whose choice lies at the edge of what was coded get the
-// next planes coded (ht_blocks_at_edges) and the allocation is redone.
+// only the cleanups from the plane that estimate picks at the threshold, the plane above it
+// unless the estimate takes the picked plane by a wide margin, and, where the estimate comes near
+// taking it, the plane below are coded. After the allocation, blocks whose choice lies at the edge
+// of what was coded get the next planes coded (ht_blocks_at_edges) and the allocation is redone.
 
 // Tier-1 of a tile's HT blocks under a target: fills coded.ht_candidates, and coded.blocks with
 // their truncation points. With no target to predict from (or few blocks) every block gets every
@@ -37,10 +37,10 @@ struct HtExtension {
 
 // The blocks of an allocation (`passes`, rate_control.h) that may be cut short by what was coded:
 // one whose choice is the highest cleanup coded alone (or nothing) while higher planes are uncoded
-// (a cleanup from higher up might be worth its bytes at the threshold where this one is not), one
-// whose choice is the lowest cleanup coded above plane 0 (or its refinement), and one skipped
-// whose energy, bought with one byte, reaches `lowest_slope` (the lowest slope the allocation
-// takes).
+// (a cleanup from higher up might be worth its bytes at the threshold where this one is not)
+// unless the plane above was left out by a margin that still holds at `lowest_slope`, one whose
+// choice is the lowest cleanup coded above plane 0 (or its refinement), and one skipped whose
+// energy, bought with one byte, reaches `lowest_slope` (the lowest slope the allocation takes).
 std::vector<HtExtension> ht_blocks_at_edges(const std::vector<CodedTile>& tiles, const LayerPasses& passes,
                                             double lowest_slope, base::ThreadPool& pool);
 
