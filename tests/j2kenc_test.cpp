@@ -115,11 +115,10 @@ TEST_F(J2kencCli, LossyRateTargetsThroughTheCommandLine) {
   }
 }
 
-// --timing=json: every stage is there and they add up to the measured total. The margin, as in
-// j2kdec_test, is for the option handling and process-level work outside the stages, which other
-// processes on a 2-core CI machine can delay; a missing stage (tier-1 is a third of this encode or
-// more) still shows. Before the release stage existed, freeing the planes was 5 % of the total
-// under ASan and 7 % of a 4096x4096 encode.
+// --timing=json: every stage is there and they add up to the measured total within 5 % (at least
+// 2 ms, for the option handling and output outside the stages on a loaded machine). Before the
+// release stage existed, freeing the planes and joining the threads fell outside every stage: 5 %
+// of this encode under ASan on a loaded CI machine, 7 % of a 4096x4096 one; now some 1 %.
 TEST_F(J2kencCli, TimingStagesAddUpToTheTotal) {
   const fs::path big = dir / "big.png", out = dir / "t.j2k";
   imageio::write_image(big.string(), testimages::generate(testimages::Pattern::Mix, 640, 480, 3, 8));
@@ -136,7 +135,7 @@ TEST_F(J2kencCli, TimingStagesAddUpToTheTotal) {
   const double sum = number_after("sum_ms"), total = number_after("total_ms");
   EXPECT_GT(total, 0);
   EXPECT_LE(sum, total + 0.01);
-  EXPECT_NEAR(sum, total, std::max(0.2 * total, 5.0)) << r.err;
+  EXPECT_NEAR(sum, total, std::max(0.05 * total, 2.0)) << r.err;
 }
 
 TEST_F(J2kencCli, BadInputGetsOneLine) {
