@@ -30,6 +30,9 @@ struct HtCandidates {
   // Skipped blocks: an upper bound of the slope any of its points could have (ht_rate.cpp's
   // slope_bound), against which rate control checks whether skipping it was too soon.
   double slope_bound = 0;
+  // Whether slope_bound is the looser bound from the block's energy alone (a block skipped without
+  // being loaded, ht_rate.cpp): the check loads it and bounds it as slope_bound does before coding it.
+  bool bound_from_energy = false;
   // Where the cleanup above the estimated plane was left uncoded (ht_rate.cpp, kAboveReach): that
   // plane, and the estimated slope of its cleanup's step from the hull point above it; -1 and 0
   // where it was not.

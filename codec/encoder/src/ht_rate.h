@@ -17,7 +17,8 @@ namespace codec {
 // sample of the blocks is coded around and below where a first estimate cuts them and predicts the
 // final slope threshold; every other block then gets its cleanups' distortions (float sums of
 // their definitions) and lengths estimated, the lengths from counts of significant quads and
-// magnitude bits (ht::plane_statistics, scaled by what the sample's cleanups really took), and
+// magnitude bits (ht::plane_statistics, scaled by what the sample's cleanups really took; a block
+// whose energy alone is worth too little is skipped on a survey, without being loaded), and
 // only the cleanups from the plane that estimate picks at the threshold, the plane above it
 // unless the estimate takes the picked plane by a wide margin, and, where the estimate comes near
 // taking it, the plane below are coded. After the allocation, blocks whose choice lies at the edge
@@ -40,9 +41,11 @@ struct HtExtension {
 // (a cleanup from higher up might be worth its bytes at the threshold where this one is not)
 // unless the plane above was left out by a margin that still holds at `lowest_slope`, one whose
 // choice is the lowest cleanup coded above plane 0 (or its refinement), and one skipped whose
-// energy, bought with one byte, reaches `lowest_slope` (the lowest slope the allocation takes).
-std::vector<HtExtension> ht_blocks_at_edges(const std::vector<CodedTile>& tiles, const LayerPasses& passes,
-                                            double lowest_slope, base::ThreadPool& pool);
+// slope bound (HtCandidates::slope_bound) reaches `lowest_slope` (the lowest slope the allocation
+// takes). A skipped block whose bound came from its energy alone (HtCandidates::bound_from_energy)
+// is loaded and bounded from its plane statistics first, and that bound replaces it.
+std::vector<HtExtension> ht_blocks_at_edges(std::vector<CodedTile>& tiles, const LayerPasses& passes,
+                                            double lowest_slope, const EncodeParams& params, base::ThreadPool& pool);
 
 // Codes the extensions' planes (in parallel on `pool`) and updates the blocks' truncation points.
 void extend_ht_candidates(std::vector<CodedTile>& tiles, const std::vector<HtExtension>& extensions,

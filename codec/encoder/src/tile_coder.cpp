@@ -511,17 +511,26 @@ double code_sample(CodedTile& coded, const BlockSample& sample, const Tier1Targe
   return predicted;
 }
 
+std::ptrdiff_t block_offset(const BlockJob& job) {
+  return static_cast<std::ptrdiff_t>(job.y0 * job.plane_width + job.x0);
+}
+
+// A block of a lossless tile's kept integers, where they lie in its plane.
+t1::IntegerBlock integer_block(const CodedTile& coded, const BlockJob& job) {
+  return t1::IntegerBlock{coded.quantized[job.component].data() + block_offset(job),
+                          static_cast<std::ptrdiff_t>(job.plane_width), job.width, job.height};
+}
+
 }  // namespace
 
 void load_ht_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params, ht::HtBlock& into) {
-  const std::ptrdiff_t offset = static_cast<std::ptrdiff_t>(job.y0 * job.plane_width + job.x0);
-  const auto stride = static_cast<std::ptrdiff_t>(job.plane_width);
-  if (params.lossless)
-    return ht::load_ht_block(
-        t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height}, into);
-  ht::load_ht_block(t1::FloatBlock{coded.coefficients[job.component].data() + offset, stride, job.width, job.height,
-                                   job.inverse_step},
-                    into);
+  if (params.lossless) return ht::load_ht_block(integer_block(coded, job), into);
+  ht::load_ht_block(float_block(coded, job), into);
+}
+
+t1::FloatBlock float_block(const CodedTile& coded, const BlockJob& job) {
+  return t1::FloatBlock{coded.coefficients[job.component].data() + block_offset(job),
+                        static_cast<std::ptrdiff_t>(job.plane_width), job.width, job.height, job.inverse_step};
 }
 
 t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params,
@@ -529,23 +538,14 @@ t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const E
   stop.weight = job.weight;
   // Only rate control reads the passes' distortion: with every pass kept it need not be measured.
   const t1::Distortion distortion = params.layers.empty() ? t1::Distortion::Skipped : t1::Distortion::Measured;
-  const std::ptrdiff_t offset = static_cast<std::ptrdiff_t>(job.y0 * job.plane_width + job.x0);
-  const auto stride = static_cast<std::ptrdiff_t>(job.plane_width);
   if (params.ht && params.lossless)
-    return ht::encode_ht_block(
-        t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height},
-        magnitude_bitplanes, 0, distortion);
-  if (params.ht)
-    return ht::encode_ht_block(t1::FloatBlock{coded.coefficients[job.component].data() + offset, stride, job.width,
-                                              job.height, job.inverse_step},
-                               magnitude_bitplanes, 0, distortion);
+    return ht::encode_ht_block(integer_block(coded, job), magnitude_bitplanes, 0, distortion);
+  if (params.ht) return ht::encode_ht_block(float_block(coded, job), magnitude_bitplanes, 0, distortion);
   if (params.lossless)
-    return t1::encode_block(
-        t1::IntegerBlock{coded.quantized[job.component].data() + offset, stride, job.width, job.height},
-        job.orientation, magnitude_bitplanes, params.block_style, stop, distortion);
-  return t1::encode_block(t1::FloatBlock{coded.coefficients[job.component].data() + offset, stride, job.width,
-                                         job.height, job.inverse_step},
-                          job.orientation, magnitude_bitplanes, params.block_style, stop, distortion);
+    return t1::encode_block(integer_block(coded, job), job.orientation, magnitude_bitplanes, params.block_style, stop,
+                            distortion);
+  return t1::encode_block(float_block(coded, job), job.orientation, magnitude_bitplanes, params.block_style, stop,
+                          distortion);
 }
 
 CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan,

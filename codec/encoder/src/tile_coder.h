@@ -97,6 +97,8 @@ struct CodedTile {
   // `blocks` then holds as truncation points (ht_candidates.h) until rate control settles on one.
   // Empty otherwise.
   std::vector<HtCandidates> ht_candidates;
+  // HT under a target: the length model's bytes per model bit, as the sample measured it (ht_rate.cpp).
+  double ht_bytes_per_model_bit = 0;
 };
 
 // The whole image's coding parameters that every tile shares.
@@ -135,6 +137,9 @@ t1::EncodedBlock code_block(const CodedTile& coded, const BlockJob& job, const E
 // A code-block loaded for the HT coder from a coded tile's kept coefficients (quantised as loaded),
 // into `into`: a block kept from an earlier load needs no allocation or clearing for the same size.
 void load_ht_block(const CodedTile& coded, const BlockJob& job, const EncodeParams& params, ht::HtBlock& into);
+
+// A block of a lossy tile's kept coefficients, where they lie in its plane.
+t1::FloatBlock float_block(const CodedTile& coded, const BlockJob& job);
 
 // A sample of a tile's code-blocks that stands for all of them: each sampled block with the number
 // of blocks' worth of coefficients it represents. Stratified by resolution (see kSampleStride).

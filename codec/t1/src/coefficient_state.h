@@ -8,21 +8,10 @@
 
 namespace codec::t1 {
 
-// What the largest coefficient of a float block decides: the bit-planes its indices use, and the
-// fraction bits its fixed-point magnitudes keep (as many of 8 as stay below 2^31).
-struct FloatBlockPlanes {
-  int bit_planes = 0;
-  int fine_bits = 0;
-};
+// (FloatBlockPlanes, FloatBlockSurvey and survey_float_block are in codec/t1/block_encoder.h.)
 FloatBlockPlanes float_block_planes(const FloatBlock& block);
 // The block's energy as CoefficientState(block).energy() gives it, without loading the block.
 double float_block_energy(const FloatBlock& block, const FloatBlockPlanes& planes);
-// Both, reading the block once (a second time only for a block of more than 23 planes).
-struct FloatBlockSurvey {
-  FloatBlockPlanes planes;
-  double energy = 0;
-};
-FloatBlockSurvey survey_float_block(const FloatBlock& block);
 
 // A code-block's working arrays (see BlockView): magnitudes and signs, the stripe column words (all
 // clear to begin with) and, when the coefficients' fractions are given, the fixed-point magnitudes

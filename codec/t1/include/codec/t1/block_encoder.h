@@ -104,6 +104,22 @@ struct FloatBlock {
   float inverse_step = 1;
 };
 
+// What the largest coefficient of a float block decides: the bit-planes its indices use, and the
+// fraction bits its fixed-point magnitudes keep (as many of 8 as stay below 2^31).
+struct FloatBlockPlanes {
+  int bit_planes = 0;
+  int fine_bits = 0;
+};
+// A float block's bit-planes and energy (the sum of its scaled magnitudes' squares, each cut to
+// 1/256ths of an index, as the coders measure distortion), reading it once and loading nothing (a
+// second time only for a block of more than 23 planes). At low rates most blocks are worth no pass:
+// EBCOT's stop rule and HT rate control tell them by this before loading them.
+struct FloatBlockSurvey {
+  FloatBlockPlanes planes;
+  double energy = 0;
+};
+FloatBlockSurvey survey_float_block(const FloatBlock& block);
+
 // encode_block on a block in place. Mb may be 31 when the caller learns the bit-planes from the
 // result (EncodedBlock::bit_planes) and sets missing_msbs itself.
 // A StopRule needs the distortion: Skipped with a stop rule is an error.
