@@ -1,6 +1,7 @@
 #include "imageio/plane_memory.h"
 
 #include <sys/mman.h>
+#include <unistd.h>
 
 #include <cstdint>
 
@@ -29,6 +30,20 @@ void prefer_huge_pages(const void* data, std::size_t bytes) {
   if (bytes > kLargestHinted) return;
   // Failure (no THP support, EINVAL on old kernels) only means ordinary pages: ignored.
   (void)::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+}
+
+bool populate_for_writing(const void* data, std::size_t bytes) {
+#ifdef MADV_POPULATE_WRITE
+  if (data == nullptr || bytes == 0) return true;
+  const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
+  const auto begin = reinterpret_cast<std::uintptr_t>(data);
+  const std::uintptr_t first = begin / page * page;
+  return ::madvise(reinterpret_cast<void*>(first), begin + bytes - first, MADV_POPULATE_WRITE) == 0;
+#else
+  (void)data;
+  (void)bytes;
+  return false;
+#endif
 }
 
 }  // namespace imageio

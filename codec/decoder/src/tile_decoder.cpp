@@ -1,7 +1,5 @@
 #include "tile_decoder.h"
 
-#include <sys/mman.h>
-
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -249,13 +247,9 @@ void fault_in(void* data, std::size_t bytes, base::ThreadPool& pool) {
   pool.parallel_for((bytes + kRun - 1) / kRun, [&](std::size_t k) {
     volatile unsigned char* const run = first + k * kRun;  // volatile: the stores are the point
     const std::size_t end = std::min(kRun, bytes - k * kRun);
-#ifdef MADV_POPULATE_WRITE
-    // One call for the run's pages where the kernel has it (Linux 5.14), instead of a fault per
-    // page: 7 % less CPU time for a 0.75 bpp 2048x2048 decode on 2 threads (2026-11-28).
-    const auto page_start = reinterpret_cast<std::uintptr_t>(first + k * kRun) / kPage * kPage;
-    const std::size_t span = reinterpret_cast<std::uintptr_t>(first + k * kRun) + end - page_start;
-    if (::madvise(reinterpret_cast<void*>(page_start), span, MADV_POPULATE_WRITE) == 0) return;
-#endif
+    // One call for the run's pages where the kernel has it, instead of a fault per page: 7 % less
+    // CPU time for a 0.75 bpp 2048x2048 decode on 2 threads (2026-11-28).
+    if (imageio::populate_for_writing(first + k * kRun, end)) return;
     for (std::size_t at = 0; at < end; at += kPage) run[at] = 0;
   });
 }

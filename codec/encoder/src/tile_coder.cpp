@@ -210,6 +210,16 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
     const SourceComponent& src = image.components[c];
     return src.is_signed ? 0 : std::int32_t{1} << (src.precision - 1);
   };
+  // Rows [y0, y1) of new plane c, `width` samples each, faulted in at once rather than store by
+  // store as they are written (a 4096x4096 RGB image's planes are 192 MiB of new pages: 15-20 ms
+  // less on 2 vCPUs).
+  auto populate_rows = [&](std::size_t c, std::size_t width, std::size_t y0, std::size_t y1) {
+    if (in_place) return;
+    if (lossless)
+      imageio::populate_for_writing(out.integers[c].data() + y0 * width, (y1 - y0) * width * sizeof(std::int32_t));
+    else
+      imageio::populate_for_writing(out.floats[c].data() + y0 * width, (y1 - y0) * width * sizeof(float));
+  };
   // The component transform's three components share one geometry (make_plan checks it).
   if (mct) {
     const std::int32_t s0 = shift_of(0), s1 = shift_of(1), s2 = shift_of(2);
@@ -218,6 +228,7 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
         image.packed && image.packed->channels == 3 && image.packed->bytes_per_sample == 1 ? image.packed.get()
                                                                                            : nullptr;
     for_row_chunks(pool, h, [&](std::size_t y0, std::size_t y1) {
+      for (std::size_t c = 0; c < 3; ++c) populate_rows(c, w, y0, y1);
       std::vector<std::int32_t> scratch(image.packed && !rgb8 ? 3 * w : 0);
       for (std::size_t y = y0; y < y1; ++y) {
         if (rgb8) {
@@ -254,6 +265,7 @@ TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, c
     const auto cw = static_cast<std::size_t>(tc.rect.width()), ch = static_cast<std::size_t>(tc.rect.height());
     const std::int32_t shift = shift_of(c);
     for_row_chunks(pool, ch, [&](std::size_t y0, std::size_t y1) {
+      populate_rows(c, cw, y0, y1);
       std::vector<std::int32_t> scratch(image.packed ? cw : 0);
       for (std::size_t y = y0; y < y1; ++y) {
         const std::int32_t* src = source_row(c, y, scratch.data());
