@@ -125,6 +125,32 @@ constexpr double kBelowReach = 0.7;
 // At 1.5, 1100 M instructions and 0.0029 dB less; at 3, 2 % fewer instructions.
 constexpr double kAboveReach = 2;
 
+// The plane below passes kBelowReach on the estimate alone; it is coded only where, once the
+// estimated plane's codeword is coded, the plane below's cleanup could still be worth this much of
+// the threshold from one of that codeword's points: its length is the model's, scaled by what the
+// model missed on the estimated plane's cleanup in this block, and its distortion the statistics'
+// estimate. On the 2048x2048 mosaic at 0.75 bpp, 3.6 % fewer instructions (1,023 M to 986 M), the
+// same PSNR (34.5894 dB); the 16 photographs' mean PSNR moved by +0.0000, +0.0005 and +0.0000 dB
+// at 0.25, 0.75 and 2 bpp, no photograph by more than -0.0013 dB (kodim14 at 0.75 bpp). At 0.8,
+// 5.0 % fewer, but kodim15 lost 0.0057 dB at 0.25 bpp.
+constexpr double kBelowCalibrated = 0.75;
+
+bool plane_below_may_pay(const HtCandidates& c, const std::vector<ht::PlaneStatistics>& stats, int plane, double weight,
+                         double threshold, double bytes_per_bit) {
+  const t1::EncodedBlock& coded = *c.by_plane[static_cast<std::size_t>(plane)];
+  const auto at = [&](int p) -> const ht::PlaneStatistics& { return stats[static_cast<std::size_t>(p)]; };
+  const double model_error = static_cast<double>(coded.passes.front().length) / (bytes_per_bit * model_bits(at(plane)));
+  const double below_bytes = model_error * bytes_per_bit * model_bits(at(plane - 1));
+  const double below_gain = stats.back().error - at(plane - 1).error;  // from nothing, as the passes' sums
+  double gain = 0, best = 0;
+  for (const t1::PassInfo& pass : coded.passes) {
+    gain += pass.distortion_decrease;
+    const auto bytes = static_cast<double>(pass.length);
+    if (below_bytes > bytes) best = std::max(best, weight * (below_gain - gain) / (below_bytes - bytes));
+  }
+  return best >= kBelowCalibrated * threshold;
+}
+
 // Where the estimate cuts a block at `threshold`: the plane whose cleanup its hull takes (-1: none),
 // and the slope of the hull's next point, the first it refuses (0: none).
 struct EstimatedCut {
@@ -360,8 +386,9 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
       const int top = block.bit_planes - 1;
       // The estimated plane; the one above it unless the estimated step to the estimated plane is
       // steep (kAboveReach); the one below only where the estimated hull's next point comes near
-      // the threshold (kBelowReach). What is left out is left to the extension after the
-      // allocation (ht_blocks_at_edges).
+      // the threshold (kBelowReach) and, with the estimated plane coded, it still may
+      // (kBelowCalibrated). What is left out is left to the extension after the allocation
+      // (ht_blocks_at_edges).
       const EstimatedCut cut = estimated_cut(stats, job.weight, threshold, bytes_per_bit);
       const int lowest = cut.plane > 0 && cut.next_slope >= kBelowReach * threshold ? cut.plane - 1 : cut.plane;
       const bool leave_above = cut.plane >= 0 && cut.plane < top && cut.slope >= kAboveReach * threshold;
@@ -370,8 +397,13 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
         c.above_left_slope = cut.slope;
       }
       const int highest = leave_above ? cut.plane : std::min(top, cut.plane + 1);
-      const std::vector<int> planes = cut.plane < 0 ? std::vector<int>{top} : planes_between(lowest, highest);
-      add_candidates(c, block, planes, ht_passes(params));
+      if (cut.plane < 0) {
+        add_candidates(c, block, std::vector<int>{top}, ht_passes(params));
+      } else {
+        add_candidates(c, block, planes_between(cut.plane, highest), ht_passes(params));
+        if (lowest < cut.plane && plane_below_may_pay(c, stats, cut.plane, job.weight, threshold, bytes_per_bit))
+          add_candidates(c, block, std::vector<int>{lowest}, ht_passes(params));
+      }
     }
     coded.blocks[b] = truncation_points(c, block.bit_planes, energy);
     block_done();
