@@ -189,6 +189,17 @@ double model_threshold(const std::vector<BlockJob>& jobs, const BlockSample& sam
   return threshold_for_target(hulls, sample.scale, energy, target);
 }
 
+// The most blocks of one resolution the sample takes (and the presample a quarter of that): one in
+// kSampleStride up to 2,304 blocks, as the 2048x2048 mosaic's finest resolution has, fewer beyond:
+// the prediction's accuracy follows the blocks sampled. The 4096x4096 mosaic's finest resolution
+// (9,216 blocks) is then sampled one in 64 and its next (2,304) one in 16: at 0.75 bpp, 7.3 %
+// fewer instructions (4,087 M to 3,787 M), 35.1474 dB instead of 35.1475 dB (28 bytes fewer) and
+// fewer blocks extended (357 against 539); at 0.1875 bpp the same file, at 3 bpp 0.003 dB more,
+// and the 30 and 38 dB targets land 0.001 dB higher for 86 and 279 more bytes. Photographs and
+// images up to 2048x2048 sample as before. (Sampling one in 32 throughout had cost the 2048x2048
+// mosaic 8.6 % more instructions and 0.005 dB: 183 more blocks extended.)
+constexpr std::size_t kHtSampledPerResolution = 144;
+
 // The model's scale were it exact: a byte per 8 bits.
 constexpr double kNominalBytesPerModelBit = 1.0 / 8;
 
@@ -264,8 +275,9 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
   // alike, down from a guess: the threshold at which the model, at its nominal scale, has the
   // presample meet the target. Should a prediction fall within reach of where its blocks stop,
   // they are coded from every plane after all and it is made again.
-  const BlockSample sample = sample_blocks(coded.jobs, kSampleStride);
-  const BlockSample presample = sample_blocks(coded.jobs, kPresampleStride);
+  const BlockSample sample = sample_blocks(coded.jobs, kSampleStride, kHtSampledPerResolution);
+  const BlockSample presample =
+      sample_blocks(coded.jobs, kPresampleStride, kHtSampledPerResolution * kSampleStride / kPresampleStride);
   std::vector<bool> in_presample(n);
   for (std::size_t i : presample.blocks) in_presample[i] = true;
   std::vector<std::size_t> sample_rest;

@@ -389,7 +389,7 @@ std::vector<BlockJob> block_jobs(const Tile& tile, const CodingPlan& plan, bool 
 // Stratified by resolution (their blocks differ most in value: a coarse block is worth many fine
 // ones): resolutions with few blocks are taken whole, the others one block in `stride`, each
 // standing for its resolution's coefficients over those of its sampled blocks.
-BlockSample sample_blocks(const std::vector<BlockJob>& jobs, std::size_t stride) {
+BlockSample sample_blocks(const std::vector<BlockJob>& jobs, std::size_t stride, std::size_t most) {
   int resolutions = 0;
   for (const BlockJob& j : jobs) resolutions = std::max(resolutions, j.resolution + 1);
   std::vector<double> coefficients(static_cast<std::size_t>(resolutions)), sampled(coefficients.size());
@@ -398,10 +398,12 @@ BlockSample sample_blocks(const std::vector<BlockJob>& jobs, std::size_t stride)
     coefficients[static_cast<std::size_t>(j.resolution)] += static_cast<double>(j.width) * j.height;
     ++blocks[static_cast<std::size_t>(j.resolution)];
   }
+  std::vector<std::size_t> strides(blocks.size());
+  for (std::size_t r = 0; r < blocks.size(); ++r) strides[r] = std::max(stride, (blocks[r] + most - 1) / most);
   BlockSample out;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const auto r = static_cast<std::size_t>(jobs[i].resolution);
-    if (blocks[r] <= kWholeResolutionBlocks || seen[r]++ % stride == 0) {
+    if (blocks[r] <= kWholeResolutionBlocks || seen[r]++ % strides[r] == 0) {
       out.blocks.push_back(i);
       sampled[r] += static_cast<double>(jobs[i].width) * jobs[i].height;
     }

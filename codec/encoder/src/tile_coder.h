@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <new>
 #include <span>
@@ -142,12 +143,15 @@ void load_ht_block(const CodedTile& coded, const BlockJob& job, const EncodePara
 t1::FloatBlock float_block(const CodedTile& coded, const BlockJob& job);
 
 // A sample of a tile's code-blocks that stands for all of them: each sampled block with the number
-// of blocks' worth of coefficients it represents. Stratified by resolution (see kSampleStride).
+// of blocks' worth of coefficients it represents. Stratified by resolution (see kSampleStride): one
+// block in `stride` of each resolution, or fewer where that would take more than `most` blocks of
+// one resolution (a prediction's accuracy follows the blocks sampled, not the fraction of them).
 struct BlockSample {
   std::vector<std::size_t> blocks;
   std::vector<double> scale;
 };
-BlockSample sample_blocks(const std::vector<BlockJob>& jobs, std::size_t stride);
+BlockSample sample_blocks(const std::vector<BlockJob>& jobs, std::size_t stride,
+                          std::size_t most = std::numeric_limits<std::size_t>::max());
 
 // The slope threshold at which a sample of coded blocks, scaled up, spends the tile's bytes or
 // leaves the tile's squared error (`target`), from the blocks' passes as rate control sees them.
