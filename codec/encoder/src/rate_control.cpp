@@ -249,7 +249,7 @@ LayerPasses control_rate(std::vector<CodedTile>& tiles, const RateControlInputs&
                  : select_for_bytes(tiles, allocator, hulls.size(), in, file_size, empty_file, trial);
     if (ht) {
       // HT: blocks whose choice lies at the edge of the cleanups coded get the next planes coded.
-      // An edge moves by two planes a round and the prediction is rarely further off than that.
+      // An edge moves by one or two planes a round and the prediction is rarely further off than that.
       const auto extensions =
           ht_blocks_at_edges(tiles, passes, lowest_slope_taken(tiles, passes, hulls), in.params, in.pool);
       if (extensions.empty() || round == kHtRounds) break;
