@@ -44,6 +44,12 @@ constexpr double kLeastCleanupBytes = 2;
 // bounding a block's slopes: the model's median error is 2-6 %, its worst seen some 30 %.
 constexpr double kModelBytesMargin = 0.5;
 
+// The fewest bytes a cleanup the model gives `bits` could take: kModelBytesMargin of its estimate at
+// `bytes_per_bit`, and never under kLeastCleanupBytes. Every bound of a block's slopes divides by it.
+double fewest_bytes(double bits, double bytes_per_bit) {
+  return std::max(kLeastCleanupBytes, kModelBytesMargin * bytes_per_bit * bits);
+}
+
 // An upper bound of the slope of any truncation point of a block, from its plane statistics: a
 // cleanup on plane p buys energy - error(p), and with its refinement passes at most what the
 // cleanup on p - 1 buys, for no fewer bytes than half the model's estimate of the cleanup on p
@@ -53,19 +59,17 @@ double slope_bound(const std::vector<ht::PlaneStatistics>& stats, double weight,
   const double energy = stats.back().error;
   double bound = 0;
   for (int p = planes - 1; p >= 0; --p) {
-    const double bytes = std::max(kLeastCleanupBytes,
-                                  kModelBytesMargin * bytes_per_bit * model_bits(stats[static_cast<std::size_t>(p)]));
+    const double bytes = fewest_bytes(model_bits(stats[static_cast<std::size_t>(p)]), bytes_per_bit);
     const double bought = energy - stats[static_cast<std::size_t>(std::max(0, p - 1))].error;
     bound = std::max(bound, weight * bought / bytes);
   }
   return bound;
 }
 
-// The fewest bytes the model gives any truncation point of a block, at `bytes_per_bit` and the
-// margin slope_bound allows: a coded plane has at least one significant quad, with a magnitude bit.
+// The fewest bytes the model gives any truncation point of a block, at the margin slope_bound
+// allows: a coded plane has at least one significant quad, with a magnitude bit.
 double least_point_bytes(double bytes_per_bit) {
-  return std::max(kLeastCleanupBytes,
-                  kModelBytesMargin * bytes_per_bit * (kBitsPerMagnitudeBit + kBitsPerQuad + kBitsPerCleanup));
+  return fewest_bytes(kBitsPerMagnitudeBit + kBitsPerQuad + kBitsPerCleanup, bytes_per_bit);
 }
 
 // Below which plane a block's plane errors need not be known at `threshold`: the plane where the
@@ -81,9 +85,7 @@ int lowest_useful_plane(const std::vector<ht::PlaneStatistics>& counts, double e
   const int planes = static_cast<int>(counts.size()) - 1;
   const double most_bytes = energy_bound * weight / (kUsefulSlope * threshold);
   for (int p = planes - 1; p >= 0; --p) {
-    const double bytes = std::max(kLeastCleanupBytes,
-                                  kModelBytesMargin * bytes_per_bit * model_bits(counts[static_cast<std::size_t>(p)]));
-    if (bytes > most_bytes) return p;
+    if (fewest_bytes(model_bits(counts[static_cast<std::size_t>(p)]), bytes_per_bit) > most_bytes) return p;
   }
   return 0;
 }
