@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <cstring>
@@ -21,6 +22,7 @@
 
 #include "imageio/image.h"
 #include "imageio/pfm.h"
+#include "imageio/plane_memory.h"
 #include "imageio/pnm.h"
 #include "imageio/read.h"
 #include "imageio/write.h"
@@ -949,4 +951,34 @@ TEST_F(ImageIoTest, IccProfileRoundTripsThroughTiffAndPng) {
   image.icc_profile.clear();
   imageio::write_image(path("none.tif"), image);
   EXPECT_TRUE(imageio::read_image(path("none.tif")).icc_profile.empty());
+}
+
+// discard_pages drops exactly the whole pages inside its range: they read as zeros, while the
+// partial pages at either end (shared with data outside the range) keep their values; memory
+// populated for writing is writable as it was.
+TEST(PlaneMemory, DiscardPagesZeroesOnlyTheWholePagesInside) {
+  const auto page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+  std::vector<std::uint8_t, imageio::UninitialisedAllocator<std::uint8_t>> bytes;
+  imageio::resize_with_huge_pages(bytes, 8 * page);
+  imageio::populate_for_writing(bytes.data(), bytes.size());  // where supported: the pages exist before the fill
+  std::fill(bytes.begin(), bytes.end(), std::uint8_t{7});
+  // From the middle of page 1 (of the allocation, which need not start on a page) to the middle of page 5.
+  const std::size_t from = page + page / 2, to = 5 * page + page / 2;
+  imageio::discard_pages(bytes.data() + from, to - from);
+  const auto base = reinterpret_cast<std::uintptr_t>(bytes.data());
+  std::size_t zeroed = 0;
+  for (std::size_t i = 0; i < bytes.size(); ++i) {
+    const std::uintptr_t at = base + i;
+    const bool whole_page_inside = at >= (base + from + page - 1) / page * page && at < (base + to) / page * page;
+    if (whole_page_inside) {
+      ++zeroed;
+      ASSERT_EQ(bytes[i], 0) << "byte " << i;
+    } else {
+      ASSERT_EQ(bytes[i], 7) << "byte " << i;
+    }
+  }
+  EXPECT_GE(zeroed, 3 * page);
+  imageio::discard_pages(nullptr, page);               // nothing to do
+  imageio::discard_pages(bytes.data() + 1, page / 2);  // no whole page: nothing
+  EXPECT_EQ(bytes[1], 7);
 }

@@ -46,4 +46,12 @@ bool populate_for_writing(const void* data, std::size_t bytes) {
 #endif
 }
 
+void discard_pages(const void* data, std::size_t bytes) {
+  const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
+  const auto begin = reinterpret_cast<std::uintptr_t>(data);
+  const std::uintptr_t first = (begin + page - 1) / page * page, last = (begin + bytes) / page * page;
+  // Failure leaves the pages in place, to be freed with their allocation: nothing is lost.
+  if (data != nullptr && last > first) (void)::madvise(reinterpret_cast<void*>(first), last - first, MADV_DONTNEED);
+}
+
 }  // namespace imageio

@@ -393,6 +393,7 @@ std::vector<std::uint8_t> encode_image(const SourceImage& image, SourceImage* co
   // Stage 7: the memory, the DWT backend (a GL context made for this image) and the worker threads
   // handed back, timed so that the stages account for the whole encode.
   const auto release_start = Clock::now();
+  discard_coefficient_planes(tiles, pool);
   tiles = {};
   if (consumable != nullptr) {
     // Given up by the caller, who keeps its size and components.

@@ -7,9 +7,6 @@
 #include <cmath>
 #include <string>
 
-#include <sys/mman.h>
-#include <unistd.h>
-
 #include "component_transform.h"
 #include "component_transform_simd.h"
 #include "ht_rate.h"
@@ -162,15 +159,12 @@ bool can_take_source(const SourceImage* consumable, const CodingPlan& plan, cons
 }
 
 // Gives rows [y0, y1) of a source component given up by the caller back to the system: the pages
-// wholly inside them are dropped (MADV_DONTNEED; they would read as zeros, and nothing reads them
-// again), so the image's memory shrinks as its rows are converted.
+// wholly inside them are dropped (they would read as zeros, and nothing reads them again), so the
+// image's memory shrinks as its rows are converted.
 void release_rows(SourceImage& image, std::size_t component, std::size_t y0, std::size_t y1) {
   imageio::SamplePlane& samples = image.components[component].samples;
-  const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
-  const auto begin = reinterpret_cast<std::uintptr_t>(samples.data() + y0 * static_cast<std::size_t>(image.width));
-  const auto end = reinterpret_cast<std::uintptr_t>(samples.data() + y1 * static_cast<std::size_t>(image.width));
-  const std::uintptr_t first = (begin + page - 1) / page * page, last = end / page * page;
-  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_DONTNEED);
+  const auto w = static_cast<std::size_t>(image.width);
+  imageio::discard_pages(samples.data() + y0 * w, (y1 - y0) * w * sizeof(samples[0]));
 }
 
 TilePlanes load_tile_planes(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan, const Tile& tile,
@@ -385,6 +379,26 @@ std::vector<BlockJob> block_jobs(const Tile& tile, const CodingPlan& plan, bool 
 }
 
 }  // namespace
+
+void discard_coefficient_planes(std::vector<CodedTile>& tiles, base::ThreadPool& pool) {
+  // Chunks of 4 MiB: a few dozen per 4096x4096 plane, enough to keep sixteen threads busy.
+  constexpr std::size_t kChunkBytes = std::size_t{4} << 20;
+  struct Chunk {
+    const std::uint8_t* data;
+    std::size_t bytes;
+  };
+  std::vector<Chunk> chunks;
+  auto add = [&](const void* data, std::size_t bytes) {
+    const auto* p = static_cast<const std::uint8_t*>(data);
+    for (std::size_t at = 0; at < bytes; at += kChunkBytes)
+      chunks.push_back({p + at, std::min(kChunkBytes, bytes - at)});
+  };
+  for (const CodedTile& coded : tiles) {
+    for (const auto& plane : coded.quantized) add(plane.data(), plane.size() * sizeof(plane[0]));
+    for (const auto& plane : coded.coefficients) add(plane.data(), plane.size() * sizeof(plane[0]));
+  }
+  pool.parallel_for(chunks.size(), [&](std::size_t k) { imageio::discard_pages(chunks[k].data, chunks[k].bytes); });
+}
 
 // Stratified by resolution (their blocks differ most in value: a coarse block is worth many fine
 // ones): resolutions with few blocks are taken whole, the others one block in `stride`, each

@@ -67,6 +67,13 @@ void prefer_huge_pages(const void* data, std::size_t bytes);
 // call is missing or refused: the pages then fault as they are first written.
 bool populate_for_writing(const void* data, std::size_t bytes);
 
+// Hands the pages wholly inside [data, data + bytes) back to the system (MADV_DONTNEED): they read
+// as zeros afterwards, and the partial pages at either end are left as they are. For memory whose
+// contents are no longer needed: rows already consumed, or a plane about to be freed, whose pages
+// several threads discarding chunks of it free in parallel where the one munmap of its release
+// would free them on one thread (the mapping's lock is shared for this, not for munmap).
+void discard_pages(const void* data, std::size_t bytes);
+
 // Sizes an empty vector to `n` elements through prefer_huge_pages: capacity first, the hint,
 // then the elements (value-initialised, or left as they are by an allocator that does so).
 template <class T, class Allocator>
