@@ -221,8 +221,8 @@ def test_speed(bin_dir, tmp):
     if not check(heading is not None, "speed: no '## 128x128: ...' table heading"):
         return
     header, rows = table_after(out, heading)
-    check(header == ["encoder", "rate", "wall s (median)", "x Grok", "bytes", "PSNR RGB dB", "peak RSS MB"],
-          f"speed header: {header}")
+    check(header == ["encoder", "rate", "wall s (median)", "x Grok", "CPU s (median)", "bytes", "PSNR RGB dB",
+                     "peak RSS MB"], f"speed header: {header}")
     check(len(rows) == 12, f"speed: {len(rows)} rows, expected 12 (2 rates x 6 encoders)")
     prefixes = ["j2kenc (default", "j2kenc --dwt cpu", "j2kenc --ht", "opj_compress", "grk_compress", "ojph_compress"]
     for i, row in enumerate(rows):
@@ -235,15 +235,17 @@ def test_speed(bin_dir, tmp):
         x = number(row[3], f"speed {row[0]} x Grok")
         if row[0].startswith("grk_compress"):
             check(x == 1.0, f"speed: Grok's own x Grok is {row[3]}")
-        b = number(row[4], f"speed {row[0]} bytes")
+        cpu = number(row[4], f"speed {row[0]} CPU s")
+        check(cpu is not None and cpu > 0, f"speed {row[0]}: CPU time {row[4]}")
+        b = number(row[5], f"speed {row[0]} bytes")
         if rate == "lossless":
-            check(row[5] == "inf (bit-exact)", f"speed {row[0]} lossless PSNR: {row[5]}")
+            check(row[6] == "inf (bit-exact)", f"speed {row[0]} lossless PSNR: {row[6]}")
         else:
             target = 128 * 128 * 0.75 / 8
             check(b is not None and 0.5 * target < b <= 1.1 * target, f"speed {row[0]}: {b} bytes, target {target:.0f}")
-            db = number(row[5], f"speed {row[0]} PSNR")
+            db = number(row[6], f"speed {row[0]} PSNR")
             check(db is not None and db > 10, f"speed {row[0]}: {db} dB at 0.75 bpp")
-        number(row[6].removeprefix("<= "), f"speed {row[0]} peak RSS")
+        number(row[7].removeprefix("<= "), f"speed {row[0]} peak RSS")
     check(re.search(r"-qstep per rate .*0\.75 bpp: \d", out) is not None, "speed: no ojph_compress -qstep line")
     check("Not checked: the targets are for the 2048x2048 image" in out, "speed: no targets note")
     if check(os.path.isfile(json_path), "speed wrote no JSON"):
@@ -252,6 +254,7 @@ def test_speed(bin_dir, tmp):
         check([r["encoder"] for r in data["results"]] == ["j2kenc", "j2kenc-cpu", "j2kenc-ht", "opj", "grk", "ojph"] * 2,
               f"speed JSON encoders: {[r['encoder'] for r in data['results']]}")
         check(all(len(r["runs_wall_s"]) == 1 for r in data["results"]), "speed JSON: runs_wall_s should hold 1 run")
+        check(all(len(r["runs_cpu_s"]) == 1 for r in data["results"]), "speed JSON: runs_cpu_s should hold 1 run")
 
 
 def test_decode(bin_dir, tmp):
