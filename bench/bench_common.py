@@ -201,10 +201,11 @@ def _run(cmd, what):
 
 def run_measured(cmd, what):
     """Runs `cmd` as one child process and returns a dict: wall_s (from just before the start to the
-    reaping of the process), cpu_s (the child's user plus system time, from os.wait4: steadier than the
-    wall time on a shared machine, and the sum over its threads), max_rss_kb (the child's peak resident set, from os.wait4: ru_maxrss, in
-    KiB on Linux), rss_floor_kb, stdout and stderr (text). Output goes to temporary files, not pipes, so
-    that no reading happens while the clock runs. A non-zero exit raises BenchError naming `what`.
+    reaping of the process), cpu_s (the child's user plus system time over its threads, from os.wait4:
+    steadier than the wall time on a shared machine), max_rss_kb (the child's peak resident set, from
+    os.wait4: ru_maxrss, in KiB on Linux), rss_floor_kb, stdout and stderr (text). Output goes to
+    temporary files, not pipes, so that no reading happens while the clock runs. A non-zero exit raises
+    BenchError naming `what`.
 
     Linux keeps ru_maxrss across execve, and the child starts as a (v)fork of this Python process, so
     max_rss_kb is never below this process's own peak at the start, rss_floor_kb: a child that used less
@@ -225,8 +226,8 @@ def run_measured(cmd, what):
         text = (stderr.strip() or stdout.strip()).splitlines()
         tail = text[-1] if text else "(no output)"
         raise BenchError(f"{what} failed (exit {proc.returncode}): {tail}")
-    return {"wall_s": wall, "cpu_s": usage.ru_utime + usage.ru_stime, "max_rss_kb": usage.ru_maxrss, "rss_floor_kb": floor, "stdout": stdout,
-            "stderr": stderr}
+    return {"wall_s": wall, "cpu_s": usage.ru_utime + usage.ru_stime, "max_rss_kb": usage.ru_maxrss,
+            "rss_floor_kb": floor, "stdout": stdout, "stderr": stderr}
 
 
 def encode_command(tools, encoder, image, output, bpp, threads, j2kenc_options=(), raw_bpp=24.0):
