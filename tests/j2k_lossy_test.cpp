@@ -10,6 +10,7 @@
 #include <random>
 
 #include "codec/encoder/encoder.h"
+#include "support/sanitizer_build.h"
 #include "support/scratch_dir.h"
 #include "support/shared_assets.h"
 #include "imageio/read.h"
@@ -65,7 +66,7 @@ fs::path kodak(int index) { return test_support::kodak_photo(index); }
 // quality, and runs several times slower: it takes photographs 5 and 13 only, and says so.
 std::vector<int> photo_indices() {
   std::vector<int> found;
-#if defined(__SANITIZE_ADDRESS__)
+#ifdef TEST_SUPPORT_ADDRESS_SANITIZER
   std::printf("note: sanitizer build: photographs 5 and 13 only (the Release run takes them all)\n");
   for (int i : {5, 13})
 #else
