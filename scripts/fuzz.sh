@@ -2,22 +2,25 @@
 # Fuzzes the file readers for a while each: PFM and PNM (imageio), BVH and Rhubarb Lip Sync
 # (performer), and the JPEG 2000 decoder (codestreams, JP2 and JPH files, seeded with small encodes
 # of our own, HTJ2K ones included, and the conformance streams when ../shared/conformance is
-# there). Builds the libFuzzer targets with Clang in build-fuzz/ (ASan + UBSan), seeds each with
-# small valid files written here, and runs it for FUZZ_SECONDS (default 30). A crash, a sanitizer report or a broken promise
-# of a reader stops the script with libFuzzer's report and the input that caused it
-# (build-fuzz/crash-*).
+# there). Builds the libFuzzer targets with Clang (ASan + UBSan) in build-fuzz/, or in the tree
+# FUZZ_BUILD_DIR names (one configured with Clang and -DGPUJ2K_FUZZ=ON: the CI job passes its
+# sanitizer build's), seeds each with small valid files written here, and runs it for FUZZ_SECONDS
+# (default 30). A crash, a sanitizer report or a broken promise of a reader stops the script with
+# libFuzzer's report and the input that caused it (crash-* in the build folder).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${FUZZ_SECONDS:-30}"
-dir=build-fuzz
+dir="${FUZZ_BUILD_DIR:-build-fuzz}"
 # The seeds' encoder and image generator: FUZZ_SEED_BIN's (a folder of j2kenc and gentestimage that
 # another build made; the CI job passes the installed tools of its codec-alone Release build), else
-# built here. -O1 with line tables only, as the sanitizer suite, and a unity build (a few sources per
-# compiler run): the build is most of this script's time (83 s for the five targets on a 2-core
-# machine, against some 125 s one file per run).
+# built here. A tree of its own is -O1 with line tables only, as the sanitizer suite, and a unity
+# build (a few sources per compiler run): the build is most of this script's time (83 s for the
+# five targets on a 2-core machine, against some 125 s one file per run).
 seed_bin="${FUZZ_SEED_BIN:-}"
-CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DGPUJ2K_FUZZ=ON -DCMAKE_UNITY_BUILD=ON >/dev/null
+if [[ -z "${FUZZ_BUILD_DIR:-}" ]]; then
+  CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DGPUJ2K_FUZZ=ON -DCMAKE_UNITY_BUILD=ON >/dev/null
+fi
 targets=(pfm_fuzz pnm_fuzz bvh_fuzz rhubarb_fuzz codestream_fuzz)
 if [[ -z "$seed_bin" ]]; then
   targets+=(j2kenc gentestimage)

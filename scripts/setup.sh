@@ -17,7 +17,7 @@ PACKAGES=(
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev  # the performer's video (H.264 via libx264: GPL, performer only)
   ffmpeg                        # ffprobe, which the render tests read the videos back with
   libgtest-dev                  # tests
-  clang libclang-rt-14-dev      # libFuzzer for the reader fuzzers (scripts/fuzz.sh)
+  clang libclang-rt-14-dev      # the sanitizer build and its libFuzzer targets (scripts/test.sh, fuzz.sh)
   clang-format                  # the C++ style check (scripts/check_format.sh)
   libopenjp2-tools grokj2k-tools  # reference decoders the codec's output is checked against
   openjph-tools                 # ojph_compress, the HTJ2K reference in bench/speed (and its smoke test)
