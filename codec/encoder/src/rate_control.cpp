@@ -91,9 +91,9 @@ LayerPasses select_for_psnr(const std::vector<CodedTile>& tiles, const rate::Rat
 // the layers' data budgets until the file fits the last target, as full as it gets.
 // `overhead`: the file with every packet empty, measured on the first call (an empty packet's
 // header is one bit, whatever its blocks hold, so it does not change between rounds). `trial`: room
-// for the trial selections, kept between rounds. `last_scale`: the scale the previous call chose,
-// kept between rounds; a later round (HT candidates extended, starved blocks coded again) changes
-// few blocks, so its first trial is that scale, which usually fits within the tolerance at once.
+// for the trial selections, kept between rounds. `last_scale`: where given, the search's first
+// trial (a round that changed few blocks since the one that chose it usually fits within the
+// tolerance there at once); the call leaves the scale it chose in it.
 LayerPasses select_for_bytes(const std::vector<CodedTile>& tiles, const rate::RateAllocator& allocator,
                              std::size_t block_count, const RateControlInputs& in, const FileSizer& file_size,
                              std::optional<std::size_t>& empty_file, LayerPasses& trial,
