@@ -9,8 +9,8 @@
 #include <fstream>
 #include <random>
 
+#include "base/sanitizers.h"
 #include "codec/encoder/encoder.h"
-#include "support/sanitizer_build.h"
 #include "support/scratch_dir.h"
 #include "support/shared_assets.h"
 #include "imageio/read.h"
@@ -66,7 +66,7 @@ fs::path kodak(int index) { return test_support::kodak_photo(index); }
 // quality, and runs several times slower: it takes photographs 5 and 13 only, and says so.
 std::vector<int> photo_indices() {
   std::vector<int> found;
-#ifdef TEST_SUPPORT_ADDRESS_SANITIZER
+#ifdef GPUJ2K_ADDRESS_SANITIZER
   std::printf("note: sanitizer build: photographs 5 and 13 only (the Release run takes them all)\n");
   for (int i : {5, 13})
 #else

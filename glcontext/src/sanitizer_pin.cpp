@@ -1,14 +1,8 @@
 #include "sanitizer_pin.h"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define GLC_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define GLC_ASAN 1
-#endif
-#endif
+#include "base/sanitizers.h"
 
-#ifdef GLC_ASAN
+#ifdef GPUJ2K_ADDRESS_SANITIZER
 #include <dlfcn.h>
 #include <link.h>
 
@@ -17,7 +11,7 @@
 
 namespace glc::detail {
 
-#ifdef GLC_ASAN
+#ifdef GPUJ2K_ADDRESS_SANITIZER
 namespace {
 
 // Mesa's DRI megadriver (swrast_dri.so, ..._dri.so), its newer libgallium
