@@ -242,7 +242,10 @@ int main(int argc, char** argv) {
   app.add_option("--dwt", dwt,
                  "where the 9/7 DWT runs: cpu, gpu or auto (default auto: a hardware GPU where it is faster for the "
                  "image size, never a software renderer)");
-  app.add_option("--base-step", base_step, "lossy: quantisation step relative to the sample range (default 1/2048)");
+  CLI::Option* base_step_given =
+      app.add_option("--base-step", base_step,
+                     "lossy: quantisation step relative to the sample range (default 1/2048; with --ht and a byte "
+                     "target, moved by up to half an octave to suit the target unless given)");
   app.add_option("-O", jasper,
                  "JasPer-style option key=value: rate, numrlvls, mode=int|real, tilewidth, tileheight, cblkwidth, "
                  "cblkheight, prg, ilyrrates");
@@ -296,6 +299,7 @@ int main(int argc, char** argv) {
     options.format = format;
     options.lossless = lossless;
     options.base_step = base_step;
+    options.ht_step_from_target = base_step_given->count() == 0;
     if (dwt == "cpu")
       options.dwt = gpuj2k::DwtDevice::Cpu;
     else if (dwt == "gpu")

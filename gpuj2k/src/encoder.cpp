@@ -157,6 +157,7 @@ codec::EncodeParams base_params(const EncodeOptions& o) {
   p.skip_passes = !o.code_every_pass;
   p.ht = o.ht;
   p.ht_refinement = o.ht_refinement;
+  p.ht_step_from_target = o.ht_step_from_target;
   p.dwt = o.dwt == DwtDevice::Cpu   ? codec::DwtDevice::Cpu
           : o.dwt == DwtDevice::Gpu ? codec::DwtDevice::Gpu
                                     : codec::DwtDevice::Auto;

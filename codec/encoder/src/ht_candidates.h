@@ -38,6 +38,12 @@ struct HtCandidates {
   // where it was not.
   int above_left_plane = -1;
   double above_left_slope = 0;
+  // Whether only the top planes were coded because the estimate took nothing of the block at the
+  // threshold (or it was skipped, and extended since): should the allocation take it after all,
+  // the estimate was off for it, and it is estimated again where the allocation reached
+  // (ht_blocks_at_edges), once (estimated_again).
+  bool estimated_nothing = false;
+  bool estimated_again = false;
 
   int highest_coded() const;  // -1: none coded
   int lowest_coded() const;   // -1: none coded

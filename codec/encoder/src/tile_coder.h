@@ -3,6 +3,7 @@
 #include <limits>
 #include <memory>
 #include <new>
+#include <optional>
 #include <span>
 #include <type_traits>
 #include <utility>
@@ -56,7 +57,7 @@ struct BlockJob {
   float step = 1;          // lossy: the step itself, as dequantisation uses it
 };
 
-// Pass skipping (code_tile): a sample of the blocks predicts the final slope threshold; the others
+// Pass skipping (code_tile_blocks): a sample of the blocks predicts the final slope threshold; the others
 // stop once two bit-planes in a row each buy less than that threshold / kStopSafety (a plane's
 // slope falls about fourfold from one to the next, so the second quiet plane is the margin), or
 // one where the block's slopes behave (t1's stops_after_quiet_plane), and
@@ -114,8 +115,6 @@ struct CodingPlan {
 
 CodingPlan make_plan(const SourceImage& image, const EncodeParams& params);
 
-// DC shift, component transform, DWT (the 9/7 on `dwt`, the reversible 5/3 on `reversible_dwt`,
-// which must take integer planes), quantisation and tier-1 for one tile.
 struct StageTimes;
 // What pass skipping aims at in one tile: its share of the code-block bytes a byte target leaves,
 // or of the squared error (image units) a PSNR target allows. None codes every pass.
@@ -124,12 +123,28 @@ struct Tier1Target {
   double value = 0;
 };
 
-// `consumable`: the same image when the caller gave it up (encode(SourceImage&&)); a lossless tile
-// covering it whole then takes its planes instead of copying them. Null otherwise.
-CodedTile code_tile(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan,
-                    const EncodeParams& params, int tile_index, dwt::DwtBackend& dwt, dwt::DwtBackend& reversible_dwt,
-                    base::ThreadPool& pool, StageTimes& times, Tier1Target target = {}, std::size_t progress_base = 0,
-                    std::size_t progress_total = 0);
+// Stages 1 and 2 of one tile: its samples DC shifted and through the component transform, then
+// the DWT (the 9/7 on `dwt`, the reversible 5/3 on `reversible_dwt`, which must take integer
+// planes), into coded.coefficients (lossy) or coded.quantized (lossless). `consumable`: the same
+// image when the caller gave it up (encode(SourceImage&&)); a lossless tile covering it whole then
+// takes its planes instead of copying them. Null otherwise.
+CodedTile transform_tile(const SourceImage& image, SourceImage* consumable, const CodingPlan& plan,
+                         const EncodeParams& params, int tile_index, dwt::DwtBackend& dwt,
+                         dwt::DwtBackend& reversible_dwt, base::ThreadPool& pool, StageTimes& times);
+
+// Stages 3 and 4: quantisation at `plan`'s steps and tier-1 of every code-block of a transformed
+// tile, under `target` (pass skipping, or HT's candidates), and its guard bits found.
+void code_tile_blocks(CodedTile& coded, const CodingPlan& plan, const EncodeParams& params, base::ThreadPool& pool,
+                      StageTimes& times, Tier1Target target = {}, std::size_t progress_base = 0,
+                      std::size_t progress_total = 0);
+
+// For an HT byte target: a base step of `plan`'s octave phase moved to where the uniform quantiser
+// that spends `target` sits on the block's plane grid (ht_uniform_step_octaves), within half an
+// octave of params.base_step. The allocation's choices of whole planes then include, for most
+// blocks, that quantiser itself (README, "The step's phase"). Empty when no such step is found.
+// `coded`: a transformed tile (its jobs are set to `plan`'s).
+std::optional<double> ht_aligned_base_step(CodedTile& coded, const CodingPlan& plan, const EncodeParams& params,
+                                           const Tier1Target& target, base::ThreadPool& pool);
 
 // Gives the pages of every tile's kept coefficient planes back to the system, chunks of them on the
 // pool's threads at once (imageio::discard_pages), before the planes themselves are freed: on a
@@ -156,8 +171,11 @@ struct BlockSample {
   std::vector<std::size_t> blocks;
   std::vector<double> scale;
 };
+// `scattered`: each block of a resolution taken with probability 1 / stride, by a hash of its place
+// in the resolution, rather than one in every `stride` in order, which can fall in step with a
+// period of the content (a mosaic's tiles) and over- or under-represent it.
 BlockSample sample_blocks(const std::vector<BlockJob>& jobs, std::size_t stride,
-                          std::size_t most = std::numeric_limits<std::size_t>::max());
+                          std::size_t most = std::numeric_limits<std::size_t>::max(), bool scattered = false);
 
 // The slope threshold at which a sample of coded blocks, scaled up, spends the tile's bytes or
 // leaves the tile's squared error (`target`), from the blocks' passes as rate control sees them.

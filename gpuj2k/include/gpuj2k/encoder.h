@@ -95,6 +95,9 @@ struct EncodeOptions {
   // HT with a target: refinement passes (SigProp, MagRef) after each cleanup, which rate control
   // may keep. false: cleanup passes only, for decoders without HT refinement support (Grok 10).
   bool ht_refinement = true;
+  // HT with a byte target, one tile: base_step moved by up to half an octave to where the target
+  // puts it (README, "The step's phase"). false: base_step exactly as given.
+  bool ht_step_from_target = true;
   // Called from worker threads as code-blocks finish (must be thread-safe): blocks done and the
   // total. Returning false cancels the encode, which then throws Error("encode cancelled").
   std::function<bool(std::size_t done, std::size_t total)> progress;

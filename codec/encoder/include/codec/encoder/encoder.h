@@ -42,6 +42,7 @@ struct EncodeReport {
   std::string dwt_reason;            // why that backend (--dwt auto's decision, or what was asked)
   std::vector<std::string> notices;  // one line each, e.g. the GPU fallback
   std::size_t recoded_blocks = 0;    // pass skipping: blocks coded again after allocation (a block may count twice)
+  double base_step = 0;              // lossy: the base step quantised with (EncodeParams::ht_step_from_target)
 };
 
 // Encodes an image to a JPEG 2000 codestream (.j2k) or a JP2 file. Throws EncodeError.

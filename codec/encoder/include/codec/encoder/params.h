@@ -50,6 +50,10 @@ struct EncodeParams {
   // passes on p - 1, which rate control may keep (finer truncation points, better quality at a
   // byte count). false: cleanups only, for decoders that read no HT refinement segment (Grok 10).
   bool ht_refinement = true;
+  // HT under a byte target, one tile: base_step is moved by up to half an octave, so that the
+  // octave's phase puts one of every block's planes at the step a uniform quantiser would take to
+  // spend the target (README, "The step's phase"). false keeps base_step as it is given.
+  bool ht_step_from_target = true;
   int guard_bits = -1;  // -1: 2 for lossless, 1 for lossy
   int threads = 0;      // 0: all hardware threads
   // Byte and PSNR targets: tier-1 stops coding a block once its bit-planes fall far below the
