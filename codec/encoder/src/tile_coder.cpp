@@ -612,7 +612,10 @@ std::optional<double> ht_aligned_base_step(CodedTile& coded, const CodingPlan& p
   const double aim = *octaves + kHtPhaseOffset;
   double phase = aim - std::floor(aim);
   if (phase > 0.5) phase -= 1;
-  return params.base_step * std::exp2(phase);
+  const double step = params.base_step * std::exp2(phase);
+  // The same phase an octave finer where the step would pass the sample range (EncodeParams allows
+  // base steps up to 1).
+  return step > 1 ? step / 2 : step;
 }
 
 void code_tile_blocks(CodedTile& coded, const CodingPlan& plan, const EncodeParams& params, base::ThreadPool& pool,
