@@ -480,7 +480,7 @@ std::optional<double> ht_uniform_step_octaves(const CodedTile& coded, const Enco
 // divided by this. The lowest slope taken is that of the small steps that fill the bytes left after
 // the last whole one, and with the step's phase it fell far below the threshold (the 2048x2048
 // mosaic at 0.1875 bpp: 406 skipped blocks extended, against none at the fixed step). At 1.5 a
-// 1-thread encode of that mosaic takes 13 % fewer instructions at 0.1875 bpp (1,026 M to 895 M) and
+// 1-thread encode of that mosaic takes 13 % fewer instructions at 0.1875 bpp (1,026 M to 889 M) and
 // 3.4 % fewer at 0.75 bpp (1,060 M to 1,024 M), and every file tried is the same: the mosaic at
 // 0.1875, 0.75 and 3 bpp with and without the phase, the 4096x4096 one at 0.75 bpp, the 16
 // photographs at 0.25, 0.75 and 2 bpp. At 1 (none extended in those encodes), 16 % and 7.6 %
