@@ -117,14 +117,24 @@ std::vector<int> settle_guard_bits(std::vector<CodedTile>& tiles, const CodingPl
 // bytes (less a little for the headers), or of the squared error its PSNR allows (less a fifth:
 // the rate-distortion estimate runs optimistic, so the PSNR loop aims below the goal). The
 // prediction only sets where blocks stop, with a wide margin. None without targets.
-Tier1Target tier1_target(const Tile& tile, const EncodeParams& params, double samples, double peak) {
-  if (!params.skip_passes || params.lossless || params.layers.empty()) return {};
+// A tile's share of the image's samples.
+double tile_share(const Tile& tile, double samples) {
   double tile_samples = 0;
   for (const TileComponent& tc : tile.components)
     tile_samples += static_cast<double>(tc.rect.width() * tc.rect.height());
-  const double share = tile_samples / std::max(1.0, samples);
+  return tile_samples / std::max(1.0, samples);
+}
+
+// A tile's share of the code-block bytes a byte target of `bytes` leaves (the headers some 3 %).
+Tier1Target tile_bytes(const Tile& tile, double bytes, double samples) {
+  return {Tier1Target::Kind::Bytes, 0.97 * bytes * tile_share(tile, samples)};
+}
+
+Tier1Target tier1_target(const Tile& tile, const EncodeParams& params, double samples, double peak) {
+  if (!params.skip_passes || params.lossless || params.layers.empty()) return {};
   const LayerTarget& last = params.layers.back();
-  if (last.kind == LayerTarget::Kind::Bytes) return {Tier1Target::Kind::Bytes, 0.97 * last.value * share};
+  if (last.kind == LayerTarget::Kind::Bytes) return tile_bytes(tile, last.value, samples);
+  const double share = tile_share(tile, samples);
   const double goal = samples * peak * peak * std::pow(10.0, -last.value / 10.0);
   return {Tier1Target::Kind::Distortion, 0.8 * goal * share};
 }
@@ -136,17 +146,16 @@ Tier1Target tier1_target(const Tile& tile, const EncodeParams& params, double sa
 constexpr double kHtPhaseMostBitsPerCoefficient = 0.8;
 
 // The byte budget an HT encode's step phase aims at (ht_aligned_base_step): the tile's share of a
-// single-layer byte target, as tier1_target gives it with pass skipping on or off. Empty where the
+// single-layer byte target, as tier1_target gives it, with pass skipping on or off. Empty where the
 // phase stays base_step's own: no HT, no byte target, several tiles (the QCD marker in the main
 // header holds one base step for all), above kHtPhaseMostBitsPerCoefficient, or turned off.
 std::optional<Tier1Target> ht_step_target(const Tile& tile, const EncodeParams& params, double samples, int tiles) {
   if (!params.ht || !params.ht_step_from_target || params.lossless || tiles != 1 || params.layers.size() != 1 ||
       params.layers.back().kind != LayerTarget::Kind::Bytes)
     return std::nullopt;
-  if (8 * params.layers.back().value > kHtPhaseMostBitsPerCoefficient * samples) return std::nullopt;
-  EncodeParams skipping = params;
-  skipping.skip_passes = true;
-  return tier1_target(tile, skipping, samples, 0);
+  const double bytes = params.layers.back().value;
+  if (8 * bytes > kHtPhaseMostBitsPerCoefficient * samples) return std::nullopt;
+  return tile_bytes(tile, bytes, samples);
 }
 
 // Tier-2's packet writer for precinct p of resolution res of tile-component tc, with the passes

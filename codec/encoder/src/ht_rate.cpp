@@ -475,6 +475,10 @@ std::optional<double> ht_uniform_step_octaves(const CodedTile& coded, const Enco
   return static_cast<double>(p) + std::log(total[p] / target.value) / std::log(total[p] / total[p + 1]);
 }
 
+// Where a block the estimate took nothing of, but the allocation takes, is estimated again: at the
+// lowest slope taken, but no lower than the predicted threshold divided by this (ht_blocks_at_edges).
+constexpr double kReestimateReach = 4;
+
 // A skipped block (its slope bound below the predicted threshold) is extended after an allocation
 // only where the bound reaches the lowest slope the allocation takes and the predicted threshold
 // divided by this. The lowest slope taken is that of the small steps that fill the bytes left after
@@ -529,7 +533,7 @@ std::vector<HtExtension> ht_blocks_at_edges(std::vector<CodedTile>& tiles, const
         // slope taken lay 60 times below it (kodim03: planes 1 to 3 coded where 4 was wanted).
         c.estimated_again = true;
         const CodedTile& coded = tiles[t];
-        const double reached = std::max(lowest_slope, coded.stop_threshold / 4);
+        const double reached = std::max(lowest_slope, coded.stop_threshold / kReestimateReach);
         const int cut = estimated_plane(ht::plane_statistics(worker_block(coded, coded.jobs[b], params)),
                                         coded.jobs[b].weight, reached, coded.ht_bytes_per_model_bit);
         if (cut >= 0)

@@ -34,7 +34,8 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
 // Where the base step's octave should begin for an HT byte target (README, "The step's phase"):
 // log2(S / base step), S the one step at which a uniform quantiser (every block's cleanup on the
 // same plane) would spend the target, as the length model at its nominal scale tells it from the
-// presample's plane counts. Empty when even plane 0 spends less. `coded` holds the tile's jobs at
+// plane counts of a part of many blocks (ht_rate.cpp, kPhaseRows). Empty when even plane 0
+// spends less. `coded` holds the tile's jobs at
 // the base step, its coefficients transformed.
 std::optional<double> ht_uniform_step_octaves(const CodedTile& coded, const EncodeParams& params,
                                               const Tier1Target& target, base::ThreadPool& pool);
