@@ -748,6 +748,108 @@ TEST(HtBlock, RefinementPassesDecodeExactlyOnEveryShapeAndPlane) {
     }
 }
 
+// Raising near-significant samples (ht_block_encoder.cpp): an irreversible block's sample just under
+// the last coded plane's 2^q is coded as 2^q where that is cheap. Checked against the rule, written
+// here from the README, through this file's own decoders: after a cleanup that is the last pass,
+// exactly the samples of significant quads from 0.9 2^p up are raised (with their coefficient's
+// sign); with refinement passes the cleanup is the plain quantiser's, and SigProp finds every
+// sample it reads significant from 0.85 2^(p-1) up. Each pass's distortion decrease must be what
+// the decoded values leave.
+TEST(HtBlock, SamplesJustUnderTheLastPlaneAreRaisedWhereItIsCheap) {
+  std::mt19937 rng(20261129);
+  std::size_t raised_by_cleanup = 0, raised_by_sigprop = 0;
+  for (const auto& [w, h] : {std::pair{64, 64}, {33, 31}, {5, 7}, {4, 1024}, {1024, 4}})
+    for (const float inverse_step : {1.0f, 0.37f}) {
+      std::vector<float> values(static_cast<std::size_t>(w * h));
+      std::exponential_distribution<float> laplace(1.0f);
+      for (float& v : values)
+        v = (rng() % 2 ? -1.0f : 1.0f) * laplace(rng) * std::ldexp(1.0f, static_cast<int>(rng() % 5));
+      const codec::ht::HtBlock b =
+          codec::ht::load_ht_block(codec::t1::FloatBlock{values.data(), w, w, h, inverse_step});
+      const auto n = values.size();
+      auto value = [&](std::size_t i) { return b.magnitudes[i] + b.fractions[i] / 256.0; };
+      double energy = 0;
+      for (std::size_t i = 0; i < n; ++i) energy += value(i) * value(i);
+      auto rebuilt = [](std::uint32_t mu, int q) { return mu == 0 ? 0.0 : (mu + 0.5) * std::ldexp(1.0, q); };
+      for (const int p : {0, 1, 3}) {
+        const std::string where = std::to_string(w) + "x" + std::to_string(h) + " / " + std::to_string(inverse_step) +
+                                  ", p " + std::to_string(p);
+        const double unit = std::ldexp(1.0, p);
+        const auto cleanup_only =
+            codec::ht::encode_ht_block(b, 31, p, codec::t1::Distortion::Measured, codec::ht::HtPasses::Cleanup);
+        if (cleanup_only.passes.empty()) continue;
+        const Decoded c = decode_cleanup(cleanup_only.data, w, h);
+        double left = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+          const auto x = static_cast<int>(i % static_cast<std::size_t>(w)),
+                     y = static_cast<int>(i / static_cast<std::size_t>(w));
+          bool quad_significant = false;
+          for (int qy = y & ~1; qy < std::min((y & ~1) + 2, h); ++qy)
+            for (int qx = x & ~1; qx < std::min((x & ~1) + 2, w); ++qx)
+              quad_significant |= (b.magnitudes[static_cast<std::size_t>(qy * w + qx)] >> p) != 0;
+          const std::uint32_t floor_mu = b.magnitudes[i] >> p;
+          const bool raise = floor_mu == 0 && quad_significant && value(i) >= 0.9 * unit;
+          ASSERT_EQ(c.mu[i], raise ? 1u : floor_mu) << where << ", sample " << i << " (" << value(i) << ")";
+          if (c.mu[i] != 0) {
+            ASSERT_EQ(c.negative[i], values[i] < 0 ? 1 : 0) << where << ", sample " << i;
+          }
+          raised_by_cleanup += raise;
+          left += (value(i) - rebuilt(c.mu[i], p)) * (value(i) - rebuilt(c.mu[i], p));
+        }
+        EXPECT_NEAR(cleanup_only.passes[0].distortion_decrease, energy - left, 1e-9 * energy) << where;
+        if (p == 0) continue;
+        const auto refined = codec::ht::encode_ht_block(b, 31, p, codec::t1::Distortion::Measured,
+                                                        codec::ht::HtPasses::CleanupAndRefinement);
+        ASSERT_EQ(refined.passes.size(), 3u) << where;
+        const std::size_t l0 = refined.passes[0].length, l1 = refined.passes[1].length;
+        const Decoded plain = decode_cleanup(
+            std::vector<std::uint8_t>(refined.data.begin(), refined.data.begin() + static_cast<std::ptrdiff_t>(l0)), w,
+            h);
+        const Decoded sigprop =
+            decode_refinement(plain, refined.data, l0, l1 - l0, refined.data.size() - l0, false, w, h);
+        double after_cleanup = 0, after_sigprop = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+          ASSERT_EQ(plain.mu[i], b.magnitudes[i] >> p) << where << ", sample " << i << ": a raise before SigProp";
+          const double e = value(i) - rebuilt(plain.mu[i], p);
+          after_cleanup += e * e;
+          if (plain.mu[i] != 0) {
+            after_sigprop += e * e;
+            continue;
+          }
+          const bool expected = value(i) >= 0.85 * unit / 2;
+          if (sigprop.read[i]) {
+            ASSERT_EQ(sigprop.mu[i], expected ? 1u : 0u) << where << ", sample " << i << " (" << value(i) << ")";
+            raised_by_sigprop += expected && (b.magnitudes[i] >> (p - 1)) == 0;
+          }
+          if (sigprop.mu[i] != 0) {
+            ASSERT_EQ(sigprop.negative[i], values[i] < 0 ? 1 : 0) << where << ", sample " << i;
+          }
+          const double f = value(i) - rebuilt(sigprop.mu[i], p - 1);
+          after_sigprop += f * f;
+        }
+        EXPECT_NEAR(refined.passes[0].distortion_decrease, energy - after_cleanup, 1e-9 * energy) << where;
+        EXPECT_NEAR(refined.passes[1].distortion_decrease, after_cleanup - after_sigprop, 1e-9 * energy) << where;
+      }
+    }
+  // The rule must have had work to do, or this test proves nothing.
+  EXPECT_GT(raised_by_cleanup, 100u);
+  EXPECT_GT(raised_by_sigprop, 100u);
+}
+
+// An integer (reversible) block's indices are the data: nothing is raised at any plane.
+TEST(HtBlock, IntegerBlocksAreNeverRaised) {
+  std::mt19937 rng(5);
+  std::vector<std::int32_t> block(64 * 64);
+  for (auto& v : block) v = static_cast<std::int32_t>(rng() % 41) - 20;
+  for (const int p : {0, 1, 2}) {
+    const auto eb = codec::ht::encode_ht_block(codec::ht::load_ht_block(block, 64, 64), 31, p,
+                                               codec::t1::Distortion::Measured, codec::ht::HtPasses::Cleanup);
+    const Decoded c = decode_cleanup(eb.data, 64, 64);
+    for (std::size_t i = 0; i < block.size(); ++i)
+      ASSERT_EQ(c.mu[i], static_cast<std::uint32_t>(std::abs(block[i])) >> p) << "p " << p << ", sample " << i;
+  }
+}
+
 TEST(HtBlock, RejectsWhatTheStandardDoesNot) {
   std::vector<std::int32_t> big(4097, 1);
   EXPECT_THROW(codec::ht::encode_ht_block(big, 4097, 1, 5), std::invalid_argument);

@@ -237,8 +237,10 @@ TEST(J2kHt, SignedSamples) {
   }
 }
 
-// Lossy HT: the same quantisation indices as an EBCOT encode that keeps every pass, so each decoder
-// must return the very samples it returns for the EBCOT stream, at the PSNR such a decode gives.
+// Lossy HT at a fixed step: the indices of an EBCOT encode that keeps every pass, except samples
+// just under 1 in significant quads, which the HT encoder codes as 1 (ht_block_encoder.cpp, raising
+// near-significant samples; HtBlock tests check the indices). Each decoder must decode it at least
+// as close to the image as the EBCOT stream.
 void check_lossy(const std::string& name, const imageio::Image& image, codec::EncodeParams params, double min_psnr) {
   SCOPED_TRACE(name);
   Scratch s;
@@ -260,12 +262,11 @@ void check_lossy(const std::string& name, const imageio::Image& image, codec::En
     if (tool == "ojph_expand") continue;  // OpenJPH decodes only HT streams, not the EBCOT one
     const fs::path other = s / ("ebcot_" + output_for(tool, s).filename().string());
     const imageio::Image b = decode_with(tool, s / "ebcot.j2k", other, options_for(tool));
-    std::size_t first = 0;
-    EXPECT_EQ(count_mismatches(a, b, first), 0u) << tool << ": HT and EBCOT decodes differ from sample " << first;
+    EXPECT_GE(db, cli::psnr(image, b, image.bits_per_sample).all_db) << tool;
   }
 }
 
-TEST(J2kHt, LossyDecodesAsTheEbcotStreamOfTheSameIndices) {
+TEST(J2kHt, LossyDecodesAtLeastAsWellAsTheEbcotStreamOfTheSameStep) {
   check_lossy("RGB 8 bits", generated(97, 75, 3, 8), ht(false), 45);
   check_lossy("grey 16 bits", generated(64, 80, 1, 16), ht(false), 45);
   codec::EncodeParams coarse = ht(false);

@@ -48,7 +48,7 @@ std::uint32_t QuantizeRow(const float* HWY_RESTRICT row, std::size_t n, float in
     const auto f = hn::ConvertTo(di, hn::Mul(hn::Sub(m, hn::ConvertTo(df, q)), to_256ths));
     hn::StoreU(hn::BitCast(du, q), du, magnitude + i);
     hn::StoreU(hn::DemoteTo(d8, hn::Min(hn::Max(f, zero), top)), d8, fraction + i);
-    const auto is_negative = hn::And(hn::RebindMask(di, hn::Lt(c, hn::Zero(df))), hn::Ne(q, zero));
+    const auto is_negative = hn::RebindMask(di, hn::Lt(c, hn::Zero(df)));
     hn::StoreU(hn::DemoteTo(d8, hn::IfThenElseZero(is_negative, one)), d8, negative + i);
     const auto power = hn::BitCast(df, hn::And(hn::BitCast(di, m), sign_and_exponent));
     hn::StoreU(hn::DemoteTo(d8, length_of(m)), d8, length + i);
@@ -66,7 +66,7 @@ std::uint32_t QuantizeRow(const float* HWY_RESTRICT row, std::size_t n, float in
     sum += static_cast<float>(value * value);
     const std::uint32_t m = static_cast<std::uint32_t>(index < 0 ? -index : index);
     magnitude[i] = m;
-    negative[i] = index < 0 ? 1 : 0;
+    negative[i] = row[i] < 0 ? 1 : 0;  // a zero index's sign too (HtBlock::signs_of_zeros)
     const int l = static_cast<int>(std::bit_width(m));
     length[i] = static_cast<std::uint8_t>(l);
     length_below_top[i] = static_cast<std::uint8_t>(std::bit_width(l > 0 ? m ^ (std::uint32_t{1} << (l - 1)) : 0u));
@@ -281,20 +281,28 @@ void BitLengths(const std::uint32_t* HWY_RESTRICT magnitude, std::size_t n, std:
   }
 }
 
-void StripeColumns(const std::uint32_t* HWY_RESTRICT stripe, std::size_t width, std::size_t stride, int rows, int p,
+void StripeColumns(const std::uint32_t* HWY_RESTRICT stripe, const std::uint8_t* HWY_RESTRICT fraction,
+                   std::size_t width, std::size_t stride, int rows, int p, std::int32_t threshold,
                    std::uint8_t* HWY_RESTRICT columns) {
   const hn::ScalableTag<std::int32_t> di;
   const hn::Rebind<std::uint8_t, decltype(di)> d8;
   const std::size_t N = hn::Lanes(di);
   const auto below_plane = hn::Set(di, static_cast<std::int32_t>((std::uint32_t{1} << p) - 1));
-  const auto one = hn::Set(di, 1);
+  const auto one = hn::Set(di, 1), raise_from = hn::Set(di, threshold - 1);  // key > threshold - 1
   std::size_t x = 0;
   for (; x + N <= width; x += N) {
     auto code = hn::Zero(di);
     for (int r = 0; r < rows; ++r) {
-      const auto v = hn::BitCast(di, hn::LoadU(hn::RebindToUnsigned<decltype(di)>(), stripe + r * stride + x));
+      const std::size_t at = static_cast<std::size_t>(r) * stride + x;
+      const auto v = hn::BitCast(di, hn::LoadU(hn::RebindToUnsigned<decltype(di)>(), stripe + at));
       const auto significant = hn::Gt(v, below_plane);  // magnitudes are below 2^31
-      const auto bit = hn::And(hn::ShiftRightSame(v, p - 1), one);
+      auto bit = hn::And(hn::ShiftRightSame(v, p - 1), one);
+      if (fraction) {
+        // Below 2^p the bit SigProp sends: whether v with its fraction reaches the threshold
+        // (v < 2^p <= 2^15 here, so v * 256 + fraction fits).
+        const auto key = hn::Or(hn::ShiftLeft<8>(v), hn::PromoteTo(di, hn::LoadU(d8, fraction + at)));
+        bit = hn::IfThenElse(significant, bit, hn::IfThenElseZero(hn::Gt(key, raise_from), one));
+      }
       code = hn::Or(code, hn::ShiftLeftSame(hn::Or(hn::IfThenElseZero(significant, one), hn::ShiftLeft<4>(bit)), r));
     }
     hn::StoreU(hn::DemoteTo(d8, code), d8, columns + x);
@@ -302,11 +310,83 @@ void StripeColumns(const std::uint32_t* HWY_RESTRICT stripe, std::size_t width, 
   for (; x < width; ++x) {
     std::uint32_t code = 0;
     for (int r = 0; r < rows; ++r) {
-      const std::uint32_t v = stripe[static_cast<std::size_t>(r) * stride + x];
-      code |= (((v >> p) != 0 ? 1u : 0u) | (((v >> (p - 1)) & 1u) << 4)) << r;
+      const std::size_t at = static_cast<std::size_t>(r) * stride + x;
+      const std::uint32_t v = stripe[at];
+      const bool significant = (v >> p) != 0;
+      std::uint32_t bit = (v >> (p - 1)) & 1u;
+      if (fraction && !significant) bit = (v << 8 | fraction[at]) >= static_cast<std::uint32_t>(threshold) ? 1u : 0u;
+      code |= ((significant ? 1u : 0u) | bit << 4) << r;
     }
     columns[x] = static_cast<std::uint8_t>(code);
   }
+}
+
+// Raising near-significant samples in a row pair (the cleanup's quads; lower null for a last odd
+// row): see raise_in_quads.
+std::uint32_t RaiseInQuads(const RaiseSource& in, std::size_t width, int p, std::int32_t threshold,
+                           const RaiseTarget& out, std::uint64_t* HWY_RESTRICT key_sum) {
+  const std::int32_t unit = std::int32_t{1} << p;
+  const int rows = in.magnitude[1] ? 2 : 1;
+  std::uint32_t raised = 0;
+  std::uint64_t total = 0;
+  std::size_t x = 0;
+  // Whole quads a vector: N is even on every target but the one-lane scalar one, which has no
+  // 64-bit lanes of two 32-bit ones and does it all below.
+#if HWY_TARGET != HWY_SCALAR
+  const hn::ScalableTag<std::int32_t> di;
+  const hn::RebindToUnsigned<decltype(di)> du;
+  const hn::Repartition<std::uint64_t, decltype(di)> d64;
+  const hn::Rebind<std::uint8_t, decltype(di)> d8;
+  const std::size_t N = hn::Lanes(di);
+  const auto unit_v = hn::Set(di, unit), below = hn::Set(di, unit - 1);
+  const auto from = hn::Set(di, threshold - 1);  // key > threshold - 1
+  const auto zero = hn::Zero(di), one = hn::Set(di, 1), raised_length = hn::Set(di, p + 1);
+  auto count = zero, sum = zero;  // at most 2 * 1024 / N terms a lane, each below 2^21: no overflow
+  for (; x + N <= width; x += N) {
+    hn::Vec<decltype(di)> m[2] = {hn::BitCast(di, hn::LoadU(du, in.magnitude[0] + x)), zero};
+    if (rows == 2) m[1] = hn::BitCast(di, hn::LoadU(du, in.magnitude[1] + x));
+    // Significant columns, then quads: each 64-bit lane holds a quad's two columns.
+    const auto columns = hn::VecFromMask(di, hn::Or(hn::Gt(m[0], below), hn::Gt(m[1], below)));
+    const auto pair = hn::BitCast(d64, columns);
+    const auto quad = hn::BitCast(di, hn::Or(pair, hn::Or(hn::ShiftLeft<32>(pair), hn::ShiftRight<32>(pair))));
+    const auto in_quad = hn::Ne(quad, zero);
+    for (int r = 0; r < rows; ++r) {
+      const auto key = hn::Or(hn::ShiftLeft<8>(m[r]), hn::PromoteTo(di, hn::LoadU(d8, in.fraction[r] + x)));
+      const auto raise = hn::And(in_quad, hn::And(hn::Lt(m[r], unit_v), hn::Gt(key, from)));
+      hn::StoreU(hn::BitCast(du, hn::IfThenElse(raise, unit_v, m[r])), du, out.magnitude[r] + x);
+      const auto length = hn::PromoteTo(di, hn::LoadU(d8, in.length[r] + x));
+      const auto below_top = hn::PromoteTo(di, hn::LoadU(d8, in.length_below_top[r] + x));
+      hn::StoreU(hn::DemoteTo(d8, hn::IfThenElse(raise, raised_length, length)), d8, out.length[r] + x);
+      hn::StoreU(hn::DemoteTo(d8, hn::IfThenElseZero(hn::Not(raise), below_top)), d8, out.length_below_top[r] + x);
+      count = hn::Add(count, hn::IfThenElseZero(raise, one));
+      sum = hn::Add(sum, hn::IfThenElseZero(raise, key));
+    }
+  }
+  raised = static_cast<std::uint32_t>(hn::GetLane(hn::SumOfLanes(di, count)));
+  HWY_ALIGN std::int32_t lanes[hn::MaxLanes(di)];
+  hn::Store(sum, di, lanes);
+  for (std::size_t k = 0; k < N; ++k) total += static_cast<std::uint32_t>(lanes[k]);
+#endif
+  // The last quads (and a width below one vector), as the vectors do.
+  for (; x < width; x += 2) {
+    const std::size_t end = std::min(x + 2, width);
+    bool significant = false;
+    for (int r = 0; r < rows; ++r)
+      for (std::size_t c = x; c < end; ++c) significant |= in.magnitude[r][c] >= static_cast<std::uint32_t>(unit);
+    for (int r = 0; r < rows; ++r)
+      for (std::size_t c = x; c < end; ++c) {
+        const std::uint32_t m = in.magnitude[r][c], key = m << 8 | in.fraction[r][c];
+        const bool raise =
+            significant && m < static_cast<std::uint32_t>(unit) && key >= static_cast<std::uint32_t>(threshold);
+        out.magnitude[r][c] = raise ? static_cast<std::uint32_t>(unit) : m;
+        out.length[r][c] = raise ? static_cast<std::uint8_t>(p + 1) : in.length[r][c];
+        out.length_below_top[r][c] = raise ? std::uint8_t{0} : in.length_below_top[r][c];
+        raised += raise ? 1 : 0;
+        total += raise ? key : 0;
+      }
+  }
+  *key_sum += total;
+  return raised;
 }
 
 void ColumnBitMasks(const std::uint8_t* HWY_RESTRICT columns, std::size_t width, std::size_t words,
@@ -492,6 +572,7 @@ HWY_EXPORT(PlaneErrors);
 HWY_EXPORT(CleanupErrorSums);
 HWY_EXPORT(BitLengths);
 HWY_EXPORT(StripeColumns);
+HWY_EXPORT(RaiseInQuads);
 HWY_EXPORT(QuadCounts);
 HWY_EXPORT(ColumnBitMasks);
 HWY_EXPORT(QuadRowAnalysis);
@@ -511,9 +592,14 @@ void column_bit_masks(const std::uint8_t* columns, std::size_t width, std::size_
   HWY_DYNAMIC_DISPATCH(ColumnBitMasks)(columns, width, words, masks);
 }
 
-void stripe_columns(const std::uint32_t* stripe, std::size_t width, std::size_t stride, int rows, int p,
-                    std::uint8_t* columns) {
-  HWY_DYNAMIC_DISPATCH(StripeColumns)(stripe, width, stride, rows, p, columns);
+void stripe_columns(const std::uint32_t* stripe, const std::uint8_t* fraction, std::size_t width, std::size_t stride,
+                    int rows, int p, std::int32_t threshold, std::uint8_t* columns) {
+  HWY_DYNAMIC_DISPATCH(StripeColumns)(stripe, fraction, width, stride, rows, p, threshold, columns);
+}
+
+std::uint32_t raise_in_quads(const RaiseSource& in, std::size_t width, int p, std::int32_t threshold,
+                             const RaiseTarget& out, std::uint64_t* key_sum) {
+  return HWY_DYNAMIC_DISPATCH(RaiseInQuads)(in, width, p, threshold, out, key_sum);
 }
 
 std::size_t quad_counts(const std::uint8_t* lengths, const std::uint8_t* lengths_below_top, std::size_t width,

@@ -56,8 +56,34 @@ std::size_t quad_counts(const std::uint8_t* lengths, const std::uint8_t* lengths
 // For the refinement passes on plane p - 1 (p >= 1): per column of a stripe of `rows` (1..4) rows
 // of `width` magnitudes (row r at stripe + r * stride), one byte: bit r set where row r's magnitude
 // is significant at plane p (at or above 2^p), and bit 4 + r its bit p - 1 (0 for rows past `rows`).
-void stripe_columns(const std::uint32_t* stripe, std::size_t width, std::size_t stride, int rows, int p,
-                    std::uint8_t* columns);
+// With `fraction` (the magnitudes' fractions in 256ths, laid out as they are; p <= 15), bit 4 + r
+// of a sample below 2^p is instead whether magnitude * 256 + fraction reaches `threshold`: SigProp
+// raising (ht_block_encoder.cpp).
+void stripe_columns(const std::uint32_t* stripe, const std::uint8_t* fraction, std::size_t width, std::size_t stride,
+                    int rows, int p, std::int32_t threshold, std::uint8_t* columns);
+
+// A row pair of an HT block's arrays (row 1's pointers null for a block's last, odd row): what
+// raise_in_quads reads, and what it writes.
+struct RaiseSource {
+  const std::uint32_t* magnitude[2];
+  const std::uint8_t* fraction[2];
+  const std::uint8_t* length[2];
+  const std::uint8_t* length_below_top[2];
+};
+struct RaiseTarget {
+  std::uint32_t* magnitude[2];
+  std::uint8_t* length[2];
+  std::uint8_t* length_below_top[2];
+};
+
+// Raising near-significant samples in the cleanup on plane p (ht_block_encoder.cpp): in a row pair
+// of `width` samples, every sample below 2^p whose magnitude * 256 + fraction reaches `threshold`
+// and whose quad (columns 2k, 2k + 1 of both rows) has a sample at or above 2^p is written to `out`
+// as 2^p (bit lengths p + 1 and 0); the others as they are in `in`.
+// Returns how many were raised and adds their magnitude * 256 + fraction to key_sum. p <= 13 (so
+// that those fit in 21 bits and their sums in a lane).
+std::uint32_t raise_in_quads(const RaiseSource& in, std::size_t width, int p, std::int32_t threshold,
+                             const RaiseTarget& out, std::uint64_t* key_sum);
 
 // The bits of a stripe's column bytes (stripe_columns') as row masks, 64 columns a word: bit x % 64
 // of masks[b * words + x / 64] is bit b of columns[x], for x < width (every other bit 0). `words`

@@ -249,7 +249,7 @@ void code_magref(std::span<const std::uint8_t> columns, VlcPacker& out) {
 }  // namespace
 
 RefinementSegment encode_refinement(std::span<const std::uint32_t> magnitudes, std::span<const std::uint8_t> negative,
-                                    int width, int height, int plane) {
+                                    int width, int height, int plane, const SigPropRaise& raise) {
   if (width < 1 || height < 1 || width > 1024 || height > 1024 || width * height > 4096)
     throw std::invalid_argument("HT refinement: a code-block of " + std::to_string(width) + "x" +
                                 std::to_string(height) + " is outside 1..1024 with at most 4096 samples");
@@ -257,13 +257,21 @@ RefinementSegment encode_refinement(std::span<const std::uint32_t> magnitudes, s
   if (magnitudes.size() != samples || negative.size() != samples)
     throw std::invalid_argument("HT refinement: magnitudes and signs must hold width * height samples");
   if (plane < 1 || plane > 31) throw std::invalid_argument("HT refinement: the cleanup plane must be 1..31");
+  const bool raising = !raise.fractions.empty();
+  if (raising && (raise.fractions.size() != samples || plane > 15 || raise.threshold < 0 ||
+                  raise.threshold > (std::int32_t{1} << (plane - 1 + 8))))
+    throw std::invalid_argument(
+        "HT refinement: SigProp raising needs a fraction per sample, a plane of at most 15 "
+        "and a threshold within the plane");
   // Every stripe's columns: which samples the cleanup made significant, and their bit p - 1.
   const auto w = static_cast<std::size_t>(width);
   thread_local std::vector<std::uint8_t> column_buffer;
   column_buffer.resize(static_cast<std::size_t>((height + 3) / 4) * w);
   const std::span<std::uint8_t> columns(column_buffer);
   for (int y0 = 0; y0 < height; y0 += 4)
-    simd::stripe_columns(magnitudes.data() + static_cast<std::size_t>(y0) * w, w, w, std::min(4, height - y0), plane,
+    simd::stripe_columns(magnitudes.data() + static_cast<std::size_t>(y0) * w,
+                         raising ? raise.fractions.data() + static_cast<std::size_t>(y0) * w : nullptr, w, w,
+                         std::min(4, height - y0), plane, raise.threshold,
                          columns.data() + static_cast<std::size_t>(y0 / 4) * w);
   RefinementSegment out;
   VlcPacker magref(VlcPacker::WithoutScup{});

@@ -22,7 +22,16 @@ struct RefinementSegment {
 // `magnitudes` and `negative` as for encode_cleanup but with every plane (the quantisation
 // indices' magnitudes), row by row; `plane` the cleanup's plane p (1..31). Sizes as for
 // encode_cleanup; throws std::invalid_argument otherwise.
+// SigProp raising (README, "Raising near-significant samples"): with `fractions` (each magnitude's
+// fraction in 256ths; plane <= 15), SigProp codes as significant every sample it visits whose
+// magnitude * 256 + fraction reaches `threshold` (at most 2^(plane - 1) * 256), not only those
+// with bit plane - 1 set; `negative` must then hold the signs of zero magnitudes too.
+struct SigPropRaise {
+  std::span<const std::uint8_t> fractions;  // empty: no raising
+  std::int32_t threshold = 0;
+};
+
 RefinementSegment encode_refinement(std::span<const std::uint32_t> magnitudes, std::span<const std::uint8_t> negative,
-                                    int width, int height, int plane);
+                                    int width, int height, int plane, const SigPropRaise& raise = {});
 
 }  // namespace codec::ht

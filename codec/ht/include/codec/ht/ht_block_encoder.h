@@ -41,7 +41,7 @@ t1::EncodedBlock encode_ht_block(const t1::FloatBlock& block, int magnitude_bitp
 struct HtBlock {
   int width = 0, height = 0;
   std::vector<std::uint32_t> magnitudes;
-  std::vector<std::uint8_t> negative;   // non-zero: negative
+  std::vector<std::uint8_t> negative;   // non-zero: negative (a zero index's sign where signs_of_zeros)
   std::vector<std::uint8_t> fractions;  // empty: reversible
   int bit_planes = 0;                   // the highest set bit of any magnitude, plus one
   // Per sample, the bit length L of its magnitude and T of its magnitude without the top bit: its
@@ -52,6 +52,10 @@ struct HtBlock {
   // at no cost: for a float block the sum of its scaled coefficients' squares (each at least its
   // index and fraction), in float with a margin over its rounding; for an integer block infinity.
   double energy_bound = std::numeric_limits<double>::infinity();
+  // Whether `negative` holds the coefficient's sign for indices of 0 too (a float load's): then a
+  // sample just under the cleanup plane may be coded as significant (ht_block_encoder.cpp,
+  // raise_near_significant).
+  bool signs_of_zeros = false;
 };
 
 HtBlock load_ht_block(std::span<const std::int32_t> coefficients, int width, int height,
