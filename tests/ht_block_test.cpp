@@ -748,16 +748,72 @@ TEST(HtBlock, RefinementPassesDecodeExactlyOnEveryShapeAndPlane) {
     }
 }
 
-// Raising near-significant samples (ht_block_encoder.cpp): an irreversible block's sample just under
-// the last coded plane's 2^q is coded as 2^q where that is cheap. Checked against the rule, written
-// here from the README, through this file's own decoders: after a cleanup that is the last pass,
-// exactly the samples of significant quads from 0.9 2^p up are raised (with their coefficient's
-// sign); with refinement passes the cleanup is the plain quantiser's, and SigProp finds every
-// sample it reads significant from 0.85 2^(p-1) up. Each pass's distortion decrease must be what
-// the decoded values leave.
-TEST(HtBlock, SamplesJustUnderTheLastPlaneAreRaisedWhereItIsCheap) {
+// The magnitudes an irreversible block's cleanup on plane p codes (ht_block_encoder.cpp, README
+// "Raising near-significant samples" and "Lowering quads' exponents"), from the rules as the README
+// writes them, sample by sample. `raise`: the cleanup is the last pass. Counts what it changed.
+std::vector<std::uint32_t> adjusted_magnitudes(const codec::ht::HtBlock& b, int p, bool raise, std::size_t& raised,
+                                               std::size_t& lowered) {
+  const int w = b.width, h = b.height;
+  const std::uint32_t unit = std::uint32_t{1} << p;
+  std::vector<std::uint32_t> m = b.magnitudes;
+  auto at = [&](int x, int y) { return static_cast<std::size_t>(y * w + x); };
+  auto key = [&](std::size_t i) { return std::uint64_t{b.magnitudes[i]} * 256 + b.fractions[i]; };
+  auto exponent = [&](std::size_t i) { return static_cast<int>(exponent_of(m[i] >> p)); };
+  for (int y0 = 0; y0 < h; y0 += 2)
+    for (int x0 = 0; x0 < w; x0 += 2) {
+      std::vector<std::size_t> quad;
+      for (int y = y0; y < std::min(y0 + 2, h); ++y)
+        for (int x = x0; x < std::min(x0 + 2, w); ++x) quad.push_back(at(x, y));
+      bool significant = false;
+      for (const std::size_t i : quad) significant |= m[i] >= unit;
+      // Raising: from 0.9 u up, in quads already significant.
+      if (raise && significant)
+        for (const std::size_t i : quad)
+          if (m[i] < unit && static_cast<double>(key(i)) >= std::ceil(0.9 * unit * 256)) {
+            m[i] = unit;
+            ++raised;
+          }
+      // Lowering: the largest exponent's samples, all at its smallest index, offsets under a tenth
+      // of a step per significant sample, and above kappa.
+      int emax = 0, count = 0;
+      for (const std::size_t i : quad) {
+        emax = std::max(emax, exponent(i));
+        count += m[i] >= unit ? 1 : 0;
+      }
+      int kappa = 1;
+      if (y0 > 0 && count > 1) {
+        int above = 0;
+        for (int x = std::max(0, x0 - 1); x < std::min(w, x0 + 3); ++x)
+          above = std::max(above, exponent(at(x, y0 - 1)));
+        kappa = std::max(1, above - 1);
+      }
+      if (emax < 2 || emax <= kappa) continue;
+      const std::uint32_t lowest = (std::uint32_t{1} << (emax - 2)) + 1;
+      // Offsets in 256ths of a step, rounded down.
+      std::uint64_t offsets = 0;
+      bool all_lowest = true;
+      for (const std::size_t i : quad)
+        if (exponent(i) == emax) {
+          all_lowest &= (m[i] >> p) == lowest;
+          offsets += std::min<std::uint64_t>((key(i) - std::uint64_t{lowest} * unit * 256) >> p, 254);
+        }
+      if (!all_lowest || offsets * 10 >= std::uint64_t{static_cast<unsigned>(count)} * 256) continue;
+      for (const std::size_t i : quad)
+        if (exponent(i) == emax) {
+          m[i] = (lowest << p) - 1;
+          ++lowered;
+        }
+    }
+  return m;
+}
+
+// Raising and lowering: an irreversible block's cleanup codes the indices of adjusted_magnitudes,
+// and SigProp finds every sample it reads significant from 0.85 2^(p-1) up. Checked through this
+// file's own decoders, with and without refinement passes; each pass's distortion decrease must be
+// what the decoded values leave.
+TEST(HtBlock, IrreversibleIndicesAreRaisedAndLoweredWhereThatPays) {
   std::mt19937 rng(20261129);
-  std::size_t raised_by_cleanup = 0, raised_by_sigprop = 0;
+  std::size_t raised = 0, lowered = 0, raised_by_sigprop = 0;
   for (const auto& [w, h] : {std::pair{64, 64}, {33, 31}, {5, 7}, {4, 1024}, {1024, 4}})
     for (const float inverse_step : {1.0f, 0.37f}) {
       std::vector<float> values(static_cast<std::size_t>(w * h));
@@ -771,6 +827,9 @@ TEST(HtBlock, SamplesJustUnderTheLastPlaneAreRaisedWhereItIsCheap) {
       double energy = 0;
       for (std::size_t i = 0; i < n; ++i) energy += value(i) * value(i);
       auto rebuilt = [](std::uint32_t mu, int q) { return mu == 0 ? 0.0 : (mu + 0.5) * std::ldexp(1.0, q); };
+      auto error = [&](std::size_t i, std::uint32_t mu, int q) {
+        return (value(i) - rebuilt(mu, q)) * (value(i) - rebuilt(mu, q));
+      };
       for (const int p : {0, 1, 3}) {
         const std::string where = std::to_string(w) + "x" + std::to_string(h) + " / " + std::to_string(inverse_step) +
                                   ", p " + std::to_string(p);
@@ -778,42 +837,38 @@ TEST(HtBlock, SamplesJustUnderTheLastPlaneAreRaisedWhereItIsCheap) {
         const auto cleanup_only =
             codec::ht::encode_ht_block(b, 31, p, codec::t1::Distortion::Measured, codec::ht::HtPasses::Cleanup);
         if (cleanup_only.passes.empty()) continue;
+        const std::vector<std::uint32_t> last = adjusted_magnitudes(b, p, true, raised, lowered);
         const Decoded c = decode_cleanup(cleanup_only.data, w, h);
         double left = 0;
         for (std::size_t i = 0; i < n; ++i) {
-          const auto x = static_cast<int>(i % static_cast<std::size_t>(w)),
-                     y = static_cast<int>(i / static_cast<std::size_t>(w));
-          bool quad_significant = false;
-          for (int qy = y & ~1; qy < std::min((y & ~1) + 2, h); ++qy)
-            for (int qx = x & ~1; qx < std::min((x & ~1) + 2, w); ++qx)
-              quad_significant |= (b.magnitudes[static_cast<std::size_t>(qy * w + qx)] >> p) != 0;
-          const std::uint32_t floor_mu = b.magnitudes[i] >> p;
-          const bool raise = floor_mu == 0 && quad_significant && value(i) >= 0.9 * unit;
-          ASSERT_EQ(c.mu[i], raise ? 1u : floor_mu) << where << ", sample " << i << " (" << value(i) << ")";
+          ASSERT_EQ(c.mu[i], last[i] >> p) << where << ", sample " << i << " (" << value(i) << ")";
           if (c.mu[i] != 0) {
             ASSERT_EQ(c.negative[i], values[i] < 0 ? 1 : 0) << where << ", sample " << i;
           }
-          raised_by_cleanup += raise;
-          left += (value(i) - rebuilt(c.mu[i], p)) * (value(i) - rebuilt(c.mu[i], p));
+          left += error(i, c.mu[i], p);
         }
         EXPECT_NEAR(cleanup_only.passes[0].distortion_decrease, energy - left, 1e-9 * energy) << where;
         if (p == 0) continue;
         const auto refined = codec::ht::encode_ht_block(b, 31, p, codec::t1::Distortion::Measured,
                                                         codec::ht::HtPasses::CleanupAndRefinement);
         ASSERT_EQ(refined.passes.size(), 3u) << where;
-        const std::size_t l0 = refined.passes[0].length, l1 = refined.passes[1].length;
+        const std::vector<std::uint32_t> first = adjusted_magnitudes(b, p, false, raised, lowered);
+        const std::size_t l0 = refined.passes[0].length, l1 = refined.passes[1].length, l2 = refined.data.size();
         const Decoded plain = decode_cleanup(
             std::vector<std::uint8_t>(refined.data.begin(), refined.data.begin() + static_cast<std::ptrdiff_t>(l0)), w,
             h);
-        const Decoded sigprop =
-            decode_refinement(plain, refined.data, l0, l1 - l0, refined.data.size() - l0, false, w, h);
-        double after_cleanup = 0, after_sigprop = 0;
+        const Decoded sigprop = decode_refinement(plain, refined.data, l0, l1 - l0, l1 - l0, false, w, h);
+        const Decoded magref = decode_refinement(plain, refined.data, l0, l1 - l0, l2 - l0, true, w, h);
+        double after_cleanup = 0, after_sigprop = 0, after_magref = 0;
         for (std::size_t i = 0; i < n; ++i) {
-          ASSERT_EQ(plain.mu[i], b.magnitudes[i] >> p) << where << ", sample " << i << ": a raise before SigProp";
-          const double e = value(i) - rebuilt(plain.mu[i], p);
-          after_cleanup += e * e;
+          ASSERT_EQ(plain.mu[i], first[i] >> p) << where << ", sample " << i << " (" << value(i) << ")";
+          const double e = error(i, plain.mu[i], p);
+          after_cleanup += e;
           if (plain.mu[i] != 0) {
-            after_sigprop += e * e;
+            // MagRef: bit p - 1 of the coded magnitude (a lowered one's is 1).
+            ASSERT_EQ(magref.mu[i], first[i] >> (p - 1)) << where << ", sample " << i;
+            after_sigprop += e;
+            after_magref += error(i, magref.mu[i], p - 1);
             continue;
           }
           const bool expected = value(i) >= 0.85 * unit / 2;
@@ -824,15 +879,17 @@ TEST(HtBlock, SamplesJustUnderTheLastPlaneAreRaisedWhereItIsCheap) {
           if (sigprop.mu[i] != 0) {
             ASSERT_EQ(sigprop.negative[i], values[i] < 0 ? 1 : 0) << where << ", sample " << i;
           }
-          const double f = value(i) - rebuilt(sigprop.mu[i], p - 1);
-          after_sigprop += f * f;
+          after_sigprop += error(i, sigprop.mu[i], p - 1);
+          after_magref += error(i, sigprop.mu[i], p - 1);
         }
         EXPECT_NEAR(refined.passes[0].distortion_decrease, energy - after_cleanup, 1e-9 * energy) << where;
         EXPECT_NEAR(refined.passes[1].distortion_decrease, after_cleanup - after_sigprop, 1e-9 * energy) << where;
+        EXPECT_NEAR(refined.passes[2].distortion_decrease, after_sigprop - after_magref, 1e-9 * energy) << where;
       }
     }
-  // The rule must have had work to do, or this test proves nothing.
-  EXPECT_GT(raised_by_cleanup, 100u);
+  // The rules must have had work to do, or this test proves nothing.
+  EXPECT_GT(raised, 100u);
+  EXPECT_GT(lowered, 100u);
   EXPECT_GT(raised_by_sigprop, 100u);
 }
 

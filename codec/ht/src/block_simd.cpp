@@ -388,7 +388,6 @@ std::uint32_t RaiseInQuads(const RaiseSource& in, std::size_t width, int p, std:
   *key_sum += total;
   return raised;
 }
-
 void ColumnBitMasks(const std::uint8_t* HWY_RESTRICT columns, std::size_t width, std::size_t words,
                     std::uint64_t* HWY_RESTRICT masks) {
   std::fill(masks, masks + 8 * words, std::uint64_t{0});
@@ -459,6 +458,84 @@ void QuadRowAnalysis(const std::uint8_t* HWY_RESTRICT above, const std::uint8_t*
         hn::Or(hn::ShiftLeft<9>(context), hn::Or(hn::ShiftLeft<5>(rho), hn::Or(flag(has_residual, 4), at_top)));
     hn::StoreU(code, d, index + q);
     hn::StoreU(hn::Or(bits, hn::ShiftLeft<8>(residual)), d, exponents + q);
+  }
+}
+
+void LoweringOffsets(const std::uint32_t* HWY_RESTRICT magnitude, const std::uint8_t* HWY_RESTRICT fraction,
+                     std::size_t n, int p, std::uint8_t* HWY_RESTRICT offsets) {
+  const hn::ScalableTag<std::uint32_t> d;
+  const hn::Rebind<std::uint8_t, decltype(d)> d8;
+  const std::size_t N = hn::Lanes(d);
+  const std::uint32_t unit = std::uint32_t{1} << p;
+  const auto low_bits = hn::Set(d, unit - 1), one = hn::Set(d, 1), two = hn::Set(d, 2), zero = hn::Zero(d);
+  const auto largest = hn::Set(d, 254), none = hn::Set(d, 255);
+  std::size_t i = 0;
+  for (; i + N <= n; i += N) {
+    const auto m = hn::LoadU(d, magnitude + i);
+    const auto mu = hn::ShiftRightSame(m, p);
+    // The smallest index of its exponent: mu >= 2 and mu - 1 a power of two.
+    const auto smallest =
+        hn::And(hn::Eq(hn::And(hn::Sub(mu, one), hn::Sub(mu, two)), zero), hn::Ne(hn::ShiftRight<1>(mu), zero));
+    const auto offset = hn::ShiftRightSame(
+        hn::Or(hn::ShiftLeft<8>(hn::And(m, low_bits)), hn::PromoteTo(d, hn::LoadU(d8, fraction + i))), p);
+    const auto chosen = hn::IfThenElse(smallest, hn::Min(offset, largest), none);  // at most 255
+    hn::StoreU(hn::DemoteTo(d8, hn::BitCast(hn::RebindToSigned<decltype(d)>(), chosen)), d8, offsets + i);
+  }
+  for (; i < n; ++i) {
+    const std::uint32_t mu = magnitude[i] >> p;
+    const std::uint32_t offset = ((magnitude[i] & (unit - 1)) << 8 | fraction[i]) >> p;
+    offsets[i] = mu >= 2 && ((mu - 1) & (mu - 2)) == 0 ? static_cast<std::uint8_t>(std::min<std::uint32_t>(offset, 254))
+                                                       : std::uint8_t{255};
+  }
+}
+
+void LowerQuadRow(const std::uint8_t* HWY_RESTRICT above, std::uint8_t* HWY_RESTRICT upper,
+                  std::uint8_t* HWY_RESTRICT lower, const std::uint8_t* HWY_RESTRICT upper_offsets,
+                  const std::uint8_t* HWY_RESTRICT lower_offsets, std::size_t quads, bool initial_row,
+                  std::uint16_t* HWY_RESTRICT pattern) {
+  const hn::ScalableTag<std::uint16_t> d;  // a lane per quad: its two columns' bytes, the left one low
+  const std::size_t N = hn::Lanes(d);
+  const auto low_byte = hn::Set(d, 0xFF), zero = hn::Zero(d), one = hn::Set(d, 1);
+  const auto denominator = hn::Set(d, static_cast<std::uint16_t>(kLowerDenominator)), full = hn::Set(d, 256);
+  const auto pairs = [&](const std::uint8_t* bytes) {
+    return hn::LoadU(d, reinterpret_cast<const std::uint16_t*>(bytes));
+  };
+  const auto count = [&](auto mask) { return hn::IfThenElseZero(mask, one); };
+  for (std::size_t q = 0; q < quads; q += N) {
+    const std::size_t x = 2 * q;
+    const auto top = pairs(upper + x), bottom = pairs(lower + x);
+    // The quad's samples in the standard's order: left column top and bottom, right column.
+    const hn::Vec<decltype(d)> s[4] = {hn::And(top, low_byte), hn::And(bottom, low_byte), hn::ShiftRight<8>(top),
+                                       hn::ShiftRight<8>(bottom)};
+    const auto top_offsets = pairs(upper_offsets + x), bottom_offsets = pairs(lower_offsets + x);
+    const hn::Vec<decltype(d)> o[4] = {hn::And(top_offsets, low_byte), hn::And(bottom_offsets, low_byte),
+                                       hn::ShiftRight<8>(top_offsets), hn::ShiftRight<8>(bottom_offsets)};
+    const auto largest = hn::Max(hn::Max(s[0], s[1]), hn::Max(s[2], s[3]));
+    const auto significant = hn::Add(hn::Add(count(hn::Ne(s[0], zero)), count(hn::Ne(s[1], zero))),
+                                     hn::Add(count(hn::Ne(s[2], zero)), count(hn::Ne(s[3], zero))));
+    auto kappa = one;
+    if (!initial_row) {
+      // As quad_row_analysis: x0 - 1 .. x0 + 2 of the row above, with two significant samples or more.
+      const auto north = pairs(above + x - 1), east = pairs(above + x + 1);
+      const auto above_largest = hn::Max(hn::Max(hn::And(north, low_byte), hn::ShiftRight<8>(north)),
+                                         hn::Max(hn::And(east, low_byte), hn::ShiftRight<8>(east)));
+      kappa = hn::IfThenElse(hn::Gt(significant, one), hn::Max(one, hn::SaturatedSub(above_largest, one)), one);
+    }
+    auto offsets = zero;
+    for (int k = 0; k < 4; ++k) offsets = hn::Add(offsets, hn::IfThenElseZero(hn::Eq(s[k], largest), o[k]));
+    auto lowered = hn::And(hn::And(hn::Gt(largest, one), hn::Gt(largest, kappa)),
+                           hn::Lt(hn::Mul(offsets, denominator), hn::Mul(significant, full)));
+    if (quads - q < N) lowered = hn::And(lowered, hn::FirstN(d, quads - q));
+    auto bits = zero;
+    hn::Vec<decltype(d)> after[4];
+    for (int k = 0; k < 4; ++k) {
+      const auto here = hn::And(lowered, hn::Eq(s[k], largest));
+      after[k] = hn::Sub(s[k], count(here));
+      bits = hn::Or(bits, hn::ShiftLeftSame(count(here), k));
+    }
+    hn::StoreU(hn::Or(after[0], hn::ShiftLeft<8>(after[2])), d, reinterpret_cast<std::uint16_t*>(upper + x));
+    hn::StoreU(hn::Or(after[1], hn::ShiftLeft<8>(after[3])), d, reinterpret_cast<std::uint16_t*>(lower + x));
+    hn::StoreU(bits, d, pattern + q);
   }
 }
 
@@ -573,6 +650,8 @@ HWY_EXPORT(CleanupErrorSums);
 HWY_EXPORT(BitLengths);
 HWY_EXPORT(StripeColumns);
 HWY_EXPORT(RaiseInQuads);
+HWY_EXPORT(LoweringOffsets);
+HWY_EXPORT(LowerQuadRow);
 HWY_EXPORT(QuadCounts);
 HWY_EXPORT(ColumnBitMasks);
 HWY_EXPORT(QuadRowAnalysis);
@@ -600,6 +679,17 @@ void stripe_columns(const std::uint32_t* stripe, const std::uint8_t* fraction, s
 std::uint32_t raise_in_quads(const RaiseSource& in, std::size_t width, int p, std::int32_t threshold,
                              const RaiseTarget& out, std::uint64_t* key_sum) {
   return HWY_DYNAMIC_DISPATCH(RaiseInQuads)(in, width, p, threshold, out, key_sum);
+}
+
+void lowering_offsets(const std::uint32_t* magnitude, const std::uint8_t* fraction, std::size_t n, int p,
+                      std::uint8_t* offsets) {
+  HWY_DYNAMIC_DISPATCH(LoweringOffsets)(magnitude, fraction, n, p, offsets);
+}
+
+void lower_quad_row(const std::uint8_t* above, std::uint8_t* upper, std::uint8_t* lower,
+                    const std::uint8_t* upper_offsets, const std::uint8_t* lower_offsets, std::size_t quads,
+                    bool initial_row, std::uint16_t* pattern) {
+  HWY_DYNAMIC_DISPATCH(LowerQuadRow)(above, upper, lower, upper_offsets, lower_offsets, quads, initial_row, pattern);
 }
 
 std::size_t quad_counts(const std::uint8_t* lengths, const std::uint8_t* lengths_below_top, std::size_t width,

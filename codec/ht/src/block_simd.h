@@ -85,6 +85,26 @@ struct RaiseTarget {
 std::uint32_t raise_in_quads(const RaiseSource& in, std::size_t width, int p, std::int32_t threshold,
                              const RaiseTarget& out, std::uint64_t* key_sum);
 
+// Lowering quads' exponents in the cleanup on plane p (ht_block_encoder.cpp, README "Lowering
+// quads' exponents"), in two steps on the cleanup's exponent grid. First, per sample: 255 unless
+// its index mu = magnitude >> p is the smallest of its exponent (mu >= 2, mu - 1 a power of two),
+// else its offset within that index in 256ths of 2^p, ((magnitude mod 2^p) * 256 + fraction) >> p,
+// at most 254. p <= 23.
+void lowering_offsets(const std::uint32_t* magnitude, const std::uint8_t* fraction, std::size_t n, int p,
+                      std::uint8_t* offsets);
+// Then per row of quads, on the exponent cells quad_row_analysis reads (and offsets laid out
+// alike): a quad whose largest exponent E >= 2 exceeds kappa (as quad_row_analysis finds it, from
+// the cells above as they stand) and whose samples at E have offsets summing to less than 256 /
+// kLowerDenominator per significant sample gets those samples' exponents lowered by one, in `upper`
+// and `lower`; pattern[q] says which (bit k: the quad's sample k, left column top and bottom, then
+// the right column's). Samples not at the smallest index of E carry 255, which no sum passes.
+// Reads as quad_row_analysis does, rewrites the cells it reads (changing only the row's quads') and
+// writes up to kQuadRowOverwrite patterns past `quads`.
+inline constexpr std::uint16_t kLowerDenominator = 10;
+void lower_quad_row(const std::uint8_t* above, std::uint8_t* upper, std::uint8_t* lower,
+                    const std::uint8_t* upper_offsets, const std::uint8_t* lower_offsets, std::size_t quads,
+                    bool initial_row, std::uint16_t* pattern);
+
 // The bits of a stripe's column bytes (stripe_columns') as row masks, 64 columns a word: bit x % 64
 // of masks[b * words + x / 64] is bit b of columns[x], for x < width (every other bit 0). `words`
 // must be at least (width + 63) / 64, and `masks` must have 8 bytes to spare after its 8 * words

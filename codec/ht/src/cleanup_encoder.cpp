@@ -35,7 +35,10 @@ class SampleGrid {
  public:
   SampleGrid(std::span<const std::uint8_t> lengths, std::span<const std::uint8_t> lengths_below_top, int width,
              int height, int plane)
-      : width_(width), stride_(static_cast<std::size_t>(width) + 2 * kBorder), exponents_(thread_exponents()) {
+      : width_(width),
+        stride_(static_cast<std::size_t>(width) + 2 * kBorder),
+        exponents_(thread_buffer<0>()),
+        offsets_(thread_buffer<1>()) {
     // Every cell is written, the borders and what follows the last row with 0, so the buffer
     // needs no clearing first (it held another block's cells, in another layout).
     const std::size_t rows_end = stride_ * (static_cast<std::size_t>(height) + 1);
@@ -55,9 +58,24 @@ class SampleGrid {
   }
   // The cell of (x, y), the cells of its row's next samples following it.
   const std::uint8_t* cells_at(int x, int y) const { return cells_ + cell(x, y); }
+  std::uint8_t* cells_at(int x, int y) { return cells_ + cell(x, y); }
+
+  // Lowering's offsets (simd::lowering_offsets), laid out as the cells.
+  void add_lowering_offsets(std::span<const std::uint32_t> magnitudes, std::span<const std::uint8_t> fractions,
+                            int height, int plane) {
+    // Only the block's cells are read for what they hold (outside it no sample is at a quad's
+    // largest exponent), so the rest keeps whatever it held.
+    offsets_.resize(exponents_.size());
+    offset_cells_ = offsets_.data();
+    for (int y = 0; y < height; ++y)
+      simd::lowering_offsets(magnitudes.data() + index(0, y), fractions.data() + index(0, y),
+                             static_cast<std::size_t>(width_), plane, offset_cells_ + cell(0, y));
+  }
+  const std::uint8_t* offsets_at(int x, int y) const { return offset_cells_ + cell(x, y); }
 
  private:
-  static std::vector<std::uint8_t>& thread_exponents() {
+  template <int kWhich>
+  static std::vector<std::uint8_t>& thread_buffer() {
     thread_local std::vector<std::uint8_t> buffer;
     return buffer;
   }
@@ -74,9 +92,11 @@ class SampleGrid {
   int width_;
   std::size_t stride_;
   std::vector<std::uint8_t>& exponents_;
+  std::vector<std::uint8_t>& offsets_;
   // Its cells, read through a plain pointer: GCC otherwise recomputes the thread_local vector's
   // address (a call to __tls_get_addr in a shared library) at reads in the quad loop.
   std::uint8_t* cells_ = nullptr;
+  std::uint8_t* offset_cells_ = nullptr;
 };
 
 // simd::quad_row_analysis writes each quad's index in VlcEncodingTable's layout.
@@ -230,7 +250,7 @@ std::vector<std::uint8_t> assemble(const std::vector<std::uint8_t>& magsgn, MelP
 std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitudes,
                                          std::span<const std::uint8_t> negative, std::span<const std::uint8_t> lengths,
                                          std::span<const std::uint8_t> lengths_below_top, int width, int height,
-                                         int plane) {
+                                         int plane, const CleanupLowering* lowering) {
   if (width < 1 || height < 1 || width > 1024 || height > 1024 || width * height > 4096)
     throw std::invalid_argument("HT cleanup: a code-block of " + std::to_string(width) + "x" + std::to_string(height) +
                                 " is outside 1..1024 with at most 4096 samples");
@@ -239,7 +259,10 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
       lengths_below_top.size() != samples)
     throw std::invalid_argument("HT cleanup: magnitudes, signs and bit lengths must hold width * height samples");
   if (plane < 0 || plane > 30) throw std::invalid_argument("HT cleanup: the plane must be 0..30");
-  const SampleGrid grid(lengths, lengths_below_top, width, height, plane);
+  if (lowering && (lowering->fractions.size() != samples || plane > 23 || !lowering->lowered))
+    throw std::invalid_argument("HT cleanup: lowering needs a fraction per sample, a plane of at most 23 and a list");
+  SampleGrid grid(lengths, lengths_below_top, width, height, plane);
+  if (lowering) grid.add_lowering_offsets(magnitudes, lowering->fractions, height, plane);
   const int quads_wide = (width + 1) / 2, quads_high = (height + 1) / 2;
 
   // Room for what a cleanup near a lossy cut usually takes (a 64x64 block's some hundreds of bytes
@@ -251,7 +274,7 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
   VlcPacker vlc;
   vlc.reserve(samples / 8);
   // Each row of quads is analysed at once (simd::quad_row_analysis); the loop below only emits.
-  thread_local std::vector<std::uint16_t> index_buffer, exponent_buffer;
+  thread_local std::vector<std::uint16_t> index_buffer, exponent_buffer, pattern_buffer;
   thread_local std::vector<std::uint32_t> magsgn_buffer;
   magsgn_buffer.resize(4 * static_cast<std::size_t>(quads_wide));
   std::uint32_t* const magsgn_values = magsgn_buffer.data();
@@ -260,9 +283,15 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
   exponent_buffer.resize(static_cast<std::size_t>(quads_wide) + simd::kQuadRowOverwrite);
   std::uint16_t* const indices = index_buffer.data();
   std::uint16_t* const exponents = exponent_buffer.data();
+  pattern_buffer.resize(lowering ? static_cast<std::size_t>(quads_wide) + simd::kQuadRowOverwrite : 0);
+  std::uint16_t* const patterns = pattern_buffer.data();
   for (int qy = 0; qy < quads_high; ++qy) {
     const bool initial_row = qy == 0;
     const VlcEncodingTable& table = vlc_encoding_table(initial_row ? QuadRowKind::Initial : QuadRowKind::Other);
+    if (lowering)
+      simd::lower_quad_row(grid.cells_at(0, 2 * qy - 1), grid.cells_at(0, 2 * qy), grid.cells_at(0, 2 * qy + 1),
+                           grid.offsets_at(0, 2 * qy), grid.offsets_at(0, 2 * qy + 1),
+                           static_cast<std::size_t>(quads_wide), initial_row, patterns);
     simd::quad_row_analysis(grid.cells_at(0, 2 * qy - 1), grid.cells_at(0, 2 * qy), grid.cells_at(0, 2 * qy + 1),
                             static_cast<std::size_t>(quads_wide), initial_row, indices, exponents);
     {
@@ -271,6 +300,21 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
       simd::quad_magsgn(magnitudes.data() + upper, has_lower ? magnitudes.data() + upper + w : nullptr,
                         negative.data() + upper, has_lower ? negative.data() + upper + w : nullptr, w, plane,
                         magsgn_values);
+      // A lowered sample's index is one less: v = 2 (mu - 1) + sign two less.
+      for (int qx = 0; lowering && qx < quads_wide; ++qx) {
+        // Four quads at a time where none was lowered (most).
+        std::uint64_t four;
+        if (qx + 4 <= quads_wide && (std::memcpy(&four, patterns + qx, sizeof four), four == 0)) {
+          qx += 3;
+          continue;
+        }
+        for (unsigned bits = patterns[qx]; bits != 0; bits &= bits - 1) {
+          const int k = std::countr_zero(bits);
+          magsgn_values[4 * static_cast<std::size_t>(qx) + static_cast<std::size_t>(k)] -= 2;
+          lowering->lowered->push_back(upper + static_cast<std::size_t>(k & 1) * w + 2 * static_cast<std::size_t>(qx) +
+                                       static_cast<std::size_t>(k >> 1));
+        }
+      }
     }
     // Quads go in pairs (T.814 7.3.1): both quads' significance, then their residuals, then MagSgn.
     for (int qx = 0; qx < quads_wide; qx += 2) {

@@ -249,7 +249,8 @@ void code_magref(std::span<const std::uint8_t> columns, VlcPacker& out) {
 }  // namespace
 
 RefinementSegment encode_refinement(std::span<const std::uint32_t> magnitudes, std::span<const std::uint8_t> negative,
-                                    int width, int height, int plane, const SigPropRaise& raise) {
+                                    int width, int height, int plane, const SigPropRaise& raise,
+                                    std::span<const std::size_t> lowered) {
   if (width < 1 || height < 1 || width > 1024 || height > 1024 || width * height > 4096)
     throw std::invalid_argument("HT refinement: a code-block of " + std::to_string(width) + "x" +
                                 std::to_string(height) + " is outside 1..1024 with at most 4096 samples");
@@ -273,6 +274,11 @@ RefinementSegment encode_refinement(std::span<const std::uint32_t> magnitudes, s
                          raising ? raise.fractions.data() + static_cast<std::size_t>(y0) * w : nullptr, w, w,
                          std::min(4, height - y0), plane, raise.threshold,
                          columns.data() + static_cast<std::size_t>(y0 / 4) * w);
+  for (const std::size_t i : lowered) {
+    if (i >= samples) throw std::invalid_argument("HT refinement: a lowered sample outside the block");
+    const std::size_t y = i / w;
+    columns[y / 4 * w + i % w] |= static_cast<std::uint8_t>(1u << (4 + y % 4));
+  }
   RefinementSegment out;
   VlcPacker magref(VlcPacker::WithoutScup{});
   magref.reserve(samples / 8);

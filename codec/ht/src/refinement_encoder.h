@@ -31,7 +31,10 @@ struct SigPropRaise {
   std::int32_t threshold = 0;
 };
 
+// `lowered`: samples the cleanup coded one index lower (cleanup_encoder.h, CleanupLowering), whose
+// bit plane - 1 MagRef sends as 1 (the lowered index's bits below the plane are all 1).
 RefinementSegment encode_refinement(std::span<const std::uint32_t> magnitudes, std::span<const std::uint8_t> negative,
-                                    int width, int height, int plane, const SigPropRaise& raise = {});
+                                    int width, int height, int plane, const SigPropRaise& raise = {},
+                                    std::span<const std::size_t> lowered = {});
 
 }  // namespace codec::ht
