@@ -489,7 +489,7 @@ void LoweringOffsets(const std::uint32_t* HWY_RESTRICT magnitude, const std::uin
   }
 }
 
-void LowerQuadRow(const std::uint8_t* HWY_RESTRICT above, std::uint8_t* HWY_RESTRICT upper,
+bool LowerQuadRow(const std::uint8_t* HWY_RESTRICT above, std::uint8_t* HWY_RESTRICT upper,
                   std::uint8_t* HWY_RESTRICT lower, const std::uint8_t* HWY_RESTRICT upper_offsets,
                   const std::uint8_t* HWY_RESTRICT lower_offsets, std::size_t quads, bool initial_row,
                   std::uint16_t* HWY_RESTRICT pattern) {
@@ -501,6 +501,7 @@ void LowerQuadRow(const std::uint8_t* HWY_RESTRICT above, std::uint8_t* HWY_REST
     return hn::LoadU(d, reinterpret_cast<const std::uint16_t*>(bytes));
   };
   const auto count = [&](auto mask) { return hn::IfThenElseZero(mask, one); };
+  auto any = zero;
   for (std::size_t q = 0; q < quads; q += N) {
     const std::size_t x = 2 * q;
     const auto top = pairs(upper + x), bottom = pairs(lower + x);
@@ -536,7 +537,9 @@ void LowerQuadRow(const std::uint8_t* HWY_RESTRICT above, std::uint8_t* HWY_REST
     hn::StoreU(hn::Or(after[0], hn::ShiftLeft<8>(after[2])), d, reinterpret_cast<std::uint16_t*>(upper + x));
     hn::StoreU(hn::Or(after[1], hn::ShiftLeft<8>(after[3])), d, reinterpret_cast<std::uint16_t*>(lower + x));
     hn::StoreU(bits, d, pattern + q);
+    any = hn::Or(any, bits);
   }
+  return !hn::AllTrue(d, hn::Eq(any, zero));
 }
 
 void QuadMagSgn(const std::uint32_t* HWY_RESTRICT upper, const std::uint32_t* HWY_RESTRICT lower,
@@ -686,10 +689,11 @@ void lowering_offsets(const std::uint32_t* magnitude, const std::uint8_t* fracti
   HWY_DYNAMIC_DISPATCH(LoweringOffsets)(magnitude, fraction, n, p, offsets);
 }
 
-void lower_quad_row(const std::uint8_t* above, std::uint8_t* upper, std::uint8_t* lower,
+bool lower_quad_row(const std::uint8_t* above, std::uint8_t* upper, std::uint8_t* lower,
                     const std::uint8_t* upper_offsets, const std::uint8_t* lower_offsets, std::size_t quads,
                     bool initial_row, std::uint16_t* pattern) {
-  HWY_DYNAMIC_DISPATCH(LowerQuadRow)(above, upper, lower, upper_offsets, lower_offsets, quads, initial_row, pattern);
+  return HWY_DYNAMIC_DISPATCH(LowerQuadRow)(above, upper, lower, upper_offsets, lower_offsets, quads, initial_row,
+                                            pattern);
 }
 
 std::size_t quad_counts(const std::uint8_t* lengths, const std::uint8_t* lengths_below_top, std::size_t width,

@@ -99,9 +99,9 @@ void lowering_offsets(const std::uint32_t* magnitude, const std::uint8_t* fracti
 // and `lower`; pattern[q] says which (bit k: the quad's sample k, left column top and bottom, then
 // the right column's). Samples not at the smallest index of E carry 255, which no sum passes.
 // Reads as quad_row_analysis does, rewrites the cells it reads (changing only the row's quads') and
-// writes up to kQuadRowOverwrite patterns past `quads`.
+// writes up to kQuadRowOverwrite patterns past `quads`. Returns whether any quad was lowered.
 inline constexpr std::uint16_t kLowerDenominator = 10;
-void lower_quad_row(const std::uint8_t* above, std::uint8_t* upper, std::uint8_t* lower,
+bool lower_quad_row(const std::uint8_t* above, std::uint8_t* upper, std::uint8_t* lower,
                     const std::uint8_t* upper_offsets, const std::uint8_t* lower_offsets, std::size_t quads,
                     bool initial_row, std::uint16_t* pattern);
 

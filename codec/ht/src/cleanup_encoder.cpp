@@ -51,7 +51,12 @@ class SampleGrid {
       std::uint8_t* cells = cells_ + cell(0, y);
       const auto p = static_cast<std::uint8_t>(plane);
       std::memset(cells - kBorder, 0, kBorder);
-      for (int x = 0; x < width; ++x) cells[x] = exponent(length[x], below_top[x], p);
+      std::uint8_t bits = 0;  // a bit above the lowest: an exponent of 2 or more
+      for (int x = 0; x < width; ++x) {
+        cells[x] = exponent(length[x], below_top[x], p);
+        bits |= cells[x] & 0xFE;
+      }
+      rows_above_one_[static_cast<std::size_t>(y)] = bits != 0;
       std::memset(cells + width, 0, kBorder);
     }
     std::memset(cells_ + rows_end, 0, stride_ + kRowOverread);
@@ -60,16 +65,26 @@ class SampleGrid {
   const std::uint8_t* cells_at(int x, int y) const { return cells_ + cell(x, y); }
   std::uint8_t* cells_at(int x, int y) { return cells_ + cell(x, y); }
 
-  // Lowering's offsets (simd::lowering_offsets), laid out as the cells.
-  void add_lowering_offsets(std::span<const std::uint32_t> magnitudes, std::span<const std::uint8_t> fractions,
-                            int height, int plane) {
+  // Lowering's offsets (simd::lowering_offsets), laid out as the cells, made row by row as the
+  // quad rows that may lower need them (rows_with_offsets).
+  void prepare_lowering_offsets() {
     // Only the block's cells are read for what they hold (outside it no sample is at a quad's
     // largest exponent), so the rest keeps whatever it held.
     offsets_.resize(exponents_.size());
     offset_cells_ = offsets_.data();
-    for (int y = 0; y < height; ++y)
+  }
+  void rows_with_offsets(std::span<const std::uint32_t> magnitudes, std::span<const std::uint8_t> fractions, int y0,
+                         int y1, int plane) {
+    for (int y = y0; y < y1; ++y)
       simd::lowering_offsets(magnitudes.data() + index(0, y), fractions.data() + index(0, y),
                              static_cast<std::size_t>(width_), plane, offset_cells_ + cell(0, y));
+  }
+  // Whether any sample of rows y0 .. y1 - 1 has an exponent of 2 or more (else no quad lowers),
+  // as the grid was made (before any lowering).
+  bool any_exponent_above_one(int y0, int y1) const {
+    bool any = false;
+    for (int y = y0; y < y1; ++y) any |= rows_above_one_[static_cast<std::size_t>(y)] != 0;
+    return any;
   }
   const std::uint8_t* offsets_at(int x, int y) const { return offset_cells_ + cell(x, y); }
 
@@ -97,6 +112,7 @@ class SampleGrid {
   // address (a call to __tls_get_addr in a shared library) at reads in the quad loop.
   std::uint8_t* cells_ = nullptr;
   std::uint8_t* offset_cells_ = nullptr;
+  std::array<std::uint8_t, 1024> rows_above_one_;  // per row (at most 1024), set as the grid is made
 };
 
 // simd::quad_row_analysis writes each quad's index in VlcEncodingTable's layout.
@@ -262,7 +278,7 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
   if (lowering && (lowering->fractions.size() != samples || plane > 23 || !lowering->lowered))
     throw std::invalid_argument("HT cleanup: lowering needs a fraction per sample, a plane of at most 23 and a list");
   SampleGrid grid(lengths, lengths_below_top, width, height, plane);
-  if (lowering) grid.add_lowering_offsets(magnitudes, lowering->fractions, height, plane);
+  if (lowering) grid.prepare_lowering_offsets();
   const int quads_wide = (width + 1) / 2, quads_high = (height + 1) / 2;
 
   // Room for what a cleanup near a lossy cut usually takes (a 64x64 block's some hundreds of bytes
@@ -288,10 +304,14 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
   for (int qy = 0; qy < quads_high; ++qy) {
     const bool initial_row = qy == 0;
     const VlcEncodingTable& table = vlc_encoding_table(initial_row ? QuadRowKind::Initial : QuadRowKind::Other);
-    if (lowering)
-      simd::lower_quad_row(grid.cells_at(0, 2 * qy - 1), grid.cells_at(0, 2 * qy), grid.cells_at(0, 2 * qy + 1),
-                           grid.offsets_at(0, 2 * qy), grid.offsets_at(0, 2 * qy + 1),
-                           static_cast<std::size_t>(quads_wide), initial_row, patterns);
+    bool lowers = lowering && grid.any_exponent_above_one(2 * qy, std::min(2 * qy + 2, height));
+    if (lowers) {
+      grid.rows_with_offsets(magnitudes, lowering->fractions, 2 * qy, std::min(2 * qy + 2, height), plane);
+      lowers =
+          simd::lower_quad_row(grid.cells_at(0, 2 * qy - 1), grid.cells_at(0, 2 * qy), grid.cells_at(0, 2 * qy + 1),
+                               grid.offsets_at(0, 2 * qy), grid.offsets_at(0, 2 * qy + 1),
+                               static_cast<std::size_t>(quads_wide), initial_row, patterns);
+    }
     simd::quad_row_analysis(grid.cells_at(0, 2 * qy - 1), grid.cells_at(0, 2 * qy), grid.cells_at(0, 2 * qy + 1),
                             static_cast<std::size_t>(quads_wide), initial_row, indices, exponents);
     {
@@ -301,7 +321,7 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
                         negative.data() + upper, has_lower ? negative.data() + upper + w : nullptr, w, plane,
                         magsgn_values);
       // A lowered sample's index is one less: v = 2 (mu - 1) + sign two less.
-      for (int qx = 0; lowering && qx < quads_wide; ++qx) {
+      for (int qx = 0; lowers && qx < quads_wide; ++qx) {
         // Four quads at a time where none was lowered (most).
         std::uint64_t four;
         if (qx + 4 <= quads_wide && (std::memcpy(&four, patterns + qx, sizeof four), four == 0)) {
