@@ -79,12 +79,12 @@ constexpr double kRates[] = {0.25, 0.75, 2.0};
 
 // The photographs at 0.25, 0.75 and 2 bpp: the HT file is within [99.5 %, 100 %] of its target,
 // and its PSNR over RGB is compared with our EBCOT encode of the same target (decoded by
-// opj_decompress). Measured on the 16 photographs with SigProp and MagRef points and the step's
-// phase (README, "HT rate control"): mean -0.47 / -0.55 / -0.61 dB, worst -0.82 / -0.86 / -1.08 dB
-// at the three rates (at the fixed step -0.54 / -0.64 / -0.67; cleanups alone -0.60 / -0.80 /
-// -0.94, worst -1.72). Issue 16 asks for 0.5 dB; at the same PSNR HT takes 8-14 % more bytes than
-// our EBCOT, and that is most of what is left. The bounds below keep what is reached from
-// regressing.
+// opj_decompress). Measured on the 16 photographs with SigProp and MagRef points, the step's phase,
+// raising and lowering (README, "HT rate control"): mean -0.43 / -0.47 / -0.50 dB, worst -0.78 /
+// -0.75 / -0.86 dB at the three rates (photographs 1-4: mean -0.45 / -0.49 / -0.57, worst -0.57 /
+// -0.55 / -0.86; before raising and lowering -0.47 / -0.55 / -0.61 on all 16, at the fixed step
+// -0.54 / -0.64 / -0.67, cleanups alone -0.60 / -0.80 / -0.94). Issue 16 asks for 0.5 dB: the
+// mean of all 16 at 0.75 bpp must keep it; the other bounds keep what is reached from regressing.
 TEST(J2kHtRate, ByteTargetsOnTheKodakPhotographs) {
   const std::vector<int> photos = photographs();
   if (photos.empty())
@@ -127,7 +127,7 @@ TEST(J2kHtRate, ByteTargetsOnTheKodakPhotographs) {
     const double gap = c.ht.db - c.ebcot.db;
     std::printf("kodim%02d %.2f bpp: HT %zu bytes %.3f dB, EBCOT %zu bytes %.3f dB, HT - EBCOT %+.3f dB\n", c.photo,
                 c.bpp, c.ht.bytes, c.ht.db, c.ebcot.bytes, c.ebcot.db, gap);
-    EXPECT_GT(gap, -1.5);
+    EXPECT_GT(gap, -1.0);
     gaps[c.bpp].push_back(gap);
   }
   for (const auto& [bpp, list] : gaps) {
@@ -135,7 +135,8 @@ TEST(J2kHtRate, ByteTargetsOnTheKodakPhotographs) {
     for (double g : list) mean += g / static_cast<double>(list.size());
     std::printf("%.2f bpp: HT - EBCOT mean %+.3f dB, worst %+.3f dB over %zu photographs\n", bpp, mean,
                 *std::min_element(list.begin(), list.end()), list.size());
-    EXPECT_GT(mean, -0.8) << "at " << bpp << " bpp";
+    const double bound = bpp == 0.75 ? -0.5 : bpp < 0.75 ? -0.55 : -0.65;
+    EXPECT_GT(mean, bound) << "at " << bpp << " bpp";
   }
 }
 
