@@ -795,7 +795,7 @@ std::vector<std::uint32_t> adjusted_magnitudes(const codec::ht::HtBlock& b, int 
       for (const std::size_t i : quad)
         if (exponent(i) == emax) {
           all_lowest &= (m[i] >> p) == lowest;
-          offsets += std::min<std::uint64_t>((key(i) - std::uint64_t{lowest} * unit * 256) >> p, 254);
+          offsets += (key(i) - std::uint64_t{lowest} * unit * 256) >> p;
         }
       if (!all_lowest || offsets * 10 >= std::uint64_t{static_cast<unsigned>(count)} * 256) continue;
       for (const std::size_t i : quad)

@@ -321,73 +321,6 @@ void StripeColumns(const std::uint32_t* HWY_RESTRICT stripe, const std::uint8_t*
   }
 }
 
-// Raising near-significant samples in a row pair (the cleanup's quads; lower null for a last odd
-// row): see raise_in_quads.
-std::uint32_t RaiseInQuads(const RaiseSource& in, std::size_t width, int p, std::int32_t threshold,
-                           const RaiseTarget& out, std::uint64_t* HWY_RESTRICT key_sum) {
-  const std::int32_t unit = std::int32_t{1} << p;
-  const int rows = in.magnitude[1] ? 2 : 1;
-  std::uint32_t raised = 0;
-  std::uint64_t total = 0;
-  std::size_t x = 0;
-  // Whole quads a vector: N is even on every target but the one-lane scalar one, which has no
-  // 64-bit lanes of two 32-bit ones and does it all below.
-#if HWY_TARGET != HWY_SCALAR
-  const hn::ScalableTag<std::int32_t> di;
-  const hn::RebindToUnsigned<decltype(di)> du;
-  const hn::Repartition<std::uint64_t, decltype(di)> d64;
-  const hn::Rebind<std::uint8_t, decltype(di)> d8;
-  const std::size_t N = hn::Lanes(di);
-  const auto unit_v = hn::Set(di, unit), below = hn::Set(di, unit - 1);
-  const auto from = hn::Set(di, threshold - 1);  // key > threshold - 1
-  const auto zero = hn::Zero(di), one = hn::Set(di, 1), raised_length = hn::Set(di, p + 1);
-  auto count = zero, sum = zero;  // at most 2 * 1024 / N terms a lane, each below 2^21: no overflow
-  for (; x + N <= width; x += N) {
-    hn::Vec<decltype(di)> m[2] = {hn::BitCast(di, hn::LoadU(du, in.magnitude[0] + x)), zero};
-    if (rows == 2) m[1] = hn::BitCast(di, hn::LoadU(du, in.magnitude[1] + x));
-    // Significant columns, then quads: each 64-bit lane holds a quad's two columns.
-    const auto columns = hn::VecFromMask(di, hn::Or(hn::Gt(m[0], below), hn::Gt(m[1], below)));
-    const auto pair = hn::BitCast(d64, columns);
-    const auto quad = hn::BitCast(di, hn::Or(pair, hn::Or(hn::ShiftLeft<32>(pair), hn::ShiftRight<32>(pair))));
-    const auto in_quad = hn::Ne(quad, zero);
-    for (int r = 0; r < rows; ++r) {
-      const auto key = hn::Or(hn::ShiftLeft<8>(m[r]), hn::PromoteTo(di, hn::LoadU(d8, in.fraction[r] + x)));
-      const auto raise = hn::And(in_quad, hn::And(hn::Lt(m[r], unit_v), hn::Gt(key, from)));
-      hn::StoreU(hn::BitCast(du, hn::IfThenElse(raise, unit_v, m[r])), du, out.magnitude[r] + x);
-      const auto length = hn::PromoteTo(di, hn::LoadU(d8, in.length[r] + x));
-      const auto below_top = hn::PromoteTo(di, hn::LoadU(d8, in.length_below_top[r] + x));
-      hn::StoreU(hn::DemoteTo(d8, hn::IfThenElse(raise, raised_length, length)), d8, out.length[r] + x);
-      hn::StoreU(hn::DemoteTo(d8, hn::IfThenElseZero(hn::Not(raise), below_top)), d8, out.length_below_top[r] + x);
-      count = hn::Add(count, hn::IfThenElseZero(raise, one));
-      sum = hn::Add(sum, hn::IfThenElseZero(raise, key));
-    }
-  }
-  raised = static_cast<std::uint32_t>(hn::GetLane(hn::SumOfLanes(di, count)));
-  HWY_ALIGN std::int32_t lanes[hn::MaxLanes(di)];
-  hn::Store(sum, di, lanes);
-  for (std::size_t k = 0; k < N; ++k) total += static_cast<std::uint32_t>(lanes[k]);
-#endif
-  // The last quads (and a width below one vector), as the vectors do.
-  for (; x < width; x += 2) {
-    const std::size_t end = std::min(x + 2, width);
-    bool significant = false;
-    for (int r = 0; r < rows; ++r)
-      for (std::size_t c = x; c < end; ++c) significant |= in.magnitude[r][c] >= static_cast<std::uint32_t>(unit);
-    for (int r = 0; r < rows; ++r)
-      for (std::size_t c = x; c < end; ++c) {
-        const std::uint32_t m = in.magnitude[r][c], key = m << 8 | in.fraction[r][c];
-        const bool raise =
-            significant && m < static_cast<std::uint32_t>(unit) && key >= static_cast<std::uint32_t>(threshold);
-        out.magnitude[r][c] = raise ? static_cast<std::uint32_t>(unit) : m;
-        out.length[r][c] = raise ? static_cast<std::uint8_t>(p + 1) : in.length[r][c];
-        out.length_below_top[r][c] = raise ? std::uint8_t{0} : in.length_below_top[r][c];
-        raised += raise ? 1 : 0;
-        total += raise ? key : 0;
-      }
-  }
-  *key_sum += total;
-  return raised;
-}
 void ColumnBitMasks(const std::uint8_t* HWY_RESTRICT columns, std::size_t width, std::size_t words,
                     std::uint64_t* HWY_RESTRICT masks) {
   std::fill(masks, masks + 8 * words, std::uint64_t{0});
@@ -461,42 +394,56 @@ void QuadRowAnalysis(const std::uint8_t* HWY_RESTRICT above, const std::uint8_t*
   }
 }
 
-void LoweringOffsets(const std::uint32_t* HWY_RESTRICT magnitude, const std::uint8_t* HWY_RESTRICT fraction,
-                     std::size_t n, int p, std::uint8_t* HWY_RESTRICT offsets) {
+void AdjustmentCodes(const std::uint32_t* HWY_RESTRICT magnitude, const std::uint8_t* HWY_RESTRICT fraction,
+                     std::size_t n, int p, std::uint32_t raise_threshold, std::uint8_t* HWY_RESTRICT codes) {
   const hn::ScalableTag<std::uint32_t> d;
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
   const std::size_t N = hn::Lanes(d);
   const std::uint32_t unit = std::uint32_t{1} << p;
   const auto low_bits = hn::Set(d, unit - 1), one = hn::Set(d, 1), two = hn::Set(d, 2), zero = hn::Zero(d);
-  const auto largest = hn::Set(d, 254), none = hn::Set(d, 255);
+  const auto largest = hn::Set(d, kLargestLoweringOffset), none = hn::Set(d, kNoAdjustment);
+  const auto raise = hn::Set(d, kRaise), unit_v = hn::Set(d, unit);
+  // Keys reach raise_threshold when raise_threshold - 1 < key; with a threshold of 0 (none) no key,
+  // below 2^31, exceeds 2^31 - 1.
+  const auto from = hn::Set(d, raise_threshold == 0 ? std::uint32_t{0x7FFFFFFF} : raise_threshold - 1);
   std::size_t i = 0;
   for (; i + N <= n; i += N) {
     const auto m = hn::LoadU(d, magnitude + i);
     const auto mu = hn::ShiftRightSame(m, p);
+    const auto f = hn::PromoteTo(d, hn::LoadU(d8, fraction + i));
     // The smallest index of its exponent: mu >= 2 and mu - 1 a power of two.
     const auto smallest =
         hn::And(hn::Eq(hn::And(hn::Sub(mu, one), hn::Sub(mu, two)), zero), hn::Ne(hn::ShiftRight<1>(mu), zero));
-    const auto offset = hn::ShiftRightSame(
-        hn::Or(hn::ShiftLeft<8>(hn::And(m, low_bits)), hn::PromoteTo(d, hn::LoadU(d8, fraction + i))), p);
-    const auto chosen = hn::IfThenElse(smallest, hn::Min(offset, largest), none);  // at most 255
-    hn::StoreU(hn::DemoteTo(d8, hn::BitCast(hn::RebindToSigned<decltype(d)>(), chosen)), d8, offsets + i);
+    const auto offset = hn::ShiftRightSame(hn::Or(hn::ShiftLeft<8>(hn::And(m, low_bits)), f), p);
+    // Below 2^p, m * 256 + fraction < 2^31 (p <= 23): signed compares are exact.
+    const auto di = hn::RebindToSigned<decltype(d)>();
+    const auto key = hn::BitCast(di, hn::Or(hn::ShiftLeft<8>(m), f));
+    const auto raisable = hn::And(hn::RebindMask(d, hn::Lt(hn::BitCast(di, m), hn::BitCast(di, unit_v))),
+                                  hn::RebindMask(d, hn::Gt(key, hn::BitCast(di, from))));
+    const auto chosen = hn::IfThenElse(smallest, hn::Min(offset, largest), hn::IfThenElse(raisable, raise, none));
+    hn::StoreU(hn::DemoteTo(d8, hn::BitCast(di, chosen)), d8, codes + i);
   }
   for (; i < n; ++i) {
-    const std::uint32_t mu = magnitude[i] >> p;
-    const std::uint32_t offset = ((magnitude[i] & (unit - 1)) << 8 | fraction[i]) >> p;
-    offsets[i] = mu >= 2 && ((mu - 1) & (mu - 2)) == 0 ? static_cast<std::uint8_t>(std::min<std::uint32_t>(offset, 254))
-                                                       : std::uint8_t{255};
+    const std::uint32_t m = magnitude[i], mu = m >> p;
+    const std::uint32_t offset = ((m & (unit - 1)) << 8 | fraction[i]) >> p;
+    if (mu >= 2 && ((mu - 1) & (mu - 2)) == 0)
+      codes[i] = static_cast<std::uint8_t>(std::min<std::uint32_t>(offset, kLargestLoweringOffset));
+    else if (raise_threshold != 0 && mu == 0 && (m << 8 | fraction[i]) >= raise_threshold)
+      codes[i] = kRaise;
+    else
+      codes[i] = kNoAdjustment;
   }
 }
 
-bool LowerQuadRow(const std::uint8_t* HWY_RESTRICT above, std::uint8_t* HWY_RESTRICT upper,
-                  std::uint8_t* HWY_RESTRICT lower, const std::uint8_t* HWY_RESTRICT upper_offsets,
-                  const std::uint8_t* HWY_RESTRICT lower_offsets, std::size_t quads, bool initial_row,
-                  std::uint16_t* HWY_RESTRICT pattern) {
+bool AdjustQuadRow(const std::uint8_t* HWY_RESTRICT above, std::uint8_t* HWY_RESTRICT upper,
+                   std::uint8_t* HWY_RESTRICT lower, const std::uint8_t* HWY_RESTRICT upper_codes,
+                   const std::uint8_t* HWY_RESTRICT lower_codes, std::size_t quads, bool initial_row,
+                   std::uint16_t* HWY_RESTRICT pattern) {
   const hn::ScalableTag<std::uint16_t> d;  // a lane per quad: its two columns' bytes, the left one low
   const std::size_t N = hn::Lanes(d);
   const auto low_byte = hn::Set(d, 0xFF), zero = hn::Zero(d), one = hn::Set(d, 1);
   const auto denominator = hn::Set(d, static_cast<std::uint16_t>(kLowerDenominator)), full = hn::Set(d, 256);
+  const auto raise = hn::Set(d, static_cast<std::uint16_t>(kRaise));
   const auto pairs = [&](const std::uint8_t* bytes) {
     return hn::LoadU(d, reinterpret_cast<const std::uint16_t*>(bytes));
   };
@@ -506,12 +453,21 @@ bool LowerQuadRow(const std::uint8_t* HWY_RESTRICT above, std::uint8_t* HWY_REST
     const std::size_t x = 2 * q;
     const auto top = pairs(upper + x), bottom = pairs(lower + x);
     // The quad's samples in the standard's order: left column top and bottom, right column.
-    const hn::Vec<decltype(d)> s[4] = {hn::And(top, low_byte), hn::And(bottom, low_byte), hn::ShiftRight<8>(top),
-                                       hn::ShiftRight<8>(bottom)};
-    const auto top_offsets = pairs(upper_offsets + x), bottom_offsets = pairs(lower_offsets + x);
-    const hn::Vec<decltype(d)> o[4] = {hn::And(top_offsets, low_byte), hn::And(bottom_offsets, low_byte),
-                                       hn::ShiftRight<8>(top_offsets), hn::ShiftRight<8>(bottom_offsets)};
+    hn::Vec<decltype(d)> s[4] = {hn::And(top, low_byte), hn::And(bottom, low_byte), hn::ShiftRight<8>(top),
+                                 hn::ShiftRight<8>(bottom)};
+    const auto top_codes = pairs(upper_codes + x), bottom_codes = pairs(lower_codes + x);
+    const hn::Vec<decltype(d)> o[4] = {hn::And(top_codes, low_byte), hn::And(bottom_codes, low_byte),
+                                       hn::ShiftRight<8>(top_codes), hn::ShiftRight<8>(bottom_codes)};
     const auto largest = hn::Max(hn::Max(s[0], s[1]), hn::Max(s[2], s[3]));
+    // Raising first, in quads significant already: exponent 1 (index 1). Not past the row's quads.
+    auto active = hn::Gt(largest, zero);
+    if (quads - q < N) active = hn::And(active, hn::FirstN(d, quads - q));
+    auto bits = zero;
+    for (int k = 0; k < 4; ++k) {
+      const auto here = hn::And(active, hn::Eq(o[k], raise));
+      s[k] = hn::IfThenElse(here, one, s[k]);
+      bits = hn::Or(bits, hn::ShiftLeftSame(count(here), 4 + k));
+    }
     const auto significant = hn::Add(hn::Add(count(hn::Ne(s[0], zero)), count(hn::Ne(s[1], zero))),
                                      hn::Add(count(hn::Ne(s[2], zero)), count(hn::Ne(s[3], zero))));
     auto kappa = one;
@@ -527,7 +483,6 @@ bool LowerQuadRow(const std::uint8_t* HWY_RESTRICT above, std::uint8_t* HWY_REST
     auto lowered = hn::And(hn::And(hn::Gt(largest, one), hn::Gt(largest, kappa)),
                            hn::Lt(hn::Mul(offsets, denominator), hn::Mul(significant, full)));
     if (quads - q < N) lowered = hn::And(lowered, hn::FirstN(d, quads - q));
-    auto bits = zero;
     hn::Vec<decltype(d)> after[4];
     for (int k = 0; k < 4; ++k) {
       const auto here = hn::And(lowered, hn::Eq(s[k], largest));
@@ -652,9 +607,8 @@ HWY_EXPORT(PlaneErrors);
 HWY_EXPORT(CleanupErrorSums);
 HWY_EXPORT(BitLengths);
 HWY_EXPORT(StripeColumns);
-HWY_EXPORT(RaiseInQuads);
-HWY_EXPORT(LoweringOffsets);
-HWY_EXPORT(LowerQuadRow);
+HWY_EXPORT(AdjustmentCodes);
+HWY_EXPORT(AdjustQuadRow);
 HWY_EXPORT(QuadCounts);
 HWY_EXPORT(ColumnBitMasks);
 HWY_EXPORT(QuadRowAnalysis);
@@ -679,21 +633,15 @@ void stripe_columns(const std::uint32_t* stripe, const std::uint8_t* fraction, s
   HWY_DYNAMIC_DISPATCH(StripeColumns)(stripe, fraction, width, stride, rows, p, threshold, columns);
 }
 
-std::uint32_t raise_in_quads(const RaiseSource& in, std::size_t width, int p, std::int32_t threshold,
-                             const RaiseTarget& out, std::uint64_t* key_sum) {
-  return HWY_DYNAMIC_DISPATCH(RaiseInQuads)(in, width, p, threshold, out, key_sum);
+void adjustment_codes(const std::uint32_t* magnitude, const std::uint8_t* fraction, std::size_t n, int p,
+                      std::uint32_t raise_threshold, std::uint8_t* codes) {
+  HWY_DYNAMIC_DISPATCH(AdjustmentCodes)(magnitude, fraction, n, p, raise_threshold, codes);
 }
-
-void lowering_offsets(const std::uint32_t* magnitude, const std::uint8_t* fraction, std::size_t n, int p,
-                      std::uint8_t* offsets) {
-  HWY_DYNAMIC_DISPATCH(LoweringOffsets)(magnitude, fraction, n, p, offsets);
-}
-
-bool lower_quad_row(const std::uint8_t* above, std::uint8_t* upper, std::uint8_t* lower,
-                    const std::uint8_t* upper_offsets, const std::uint8_t* lower_offsets, std::size_t quads,
-                    bool initial_row, std::uint16_t* pattern) {
-  return HWY_DYNAMIC_DISPATCH(LowerQuadRow)(above, upper, lower, upper_offsets, lower_offsets, quads, initial_row,
-                                            pattern);
+bool adjust_quad_row(const std::uint8_t* above, std::uint8_t* upper, std::uint8_t* lower,
+                     const std::uint8_t* upper_codes, const std::uint8_t* lower_codes, std::size_t quads,
+                     bool initial_row, std::uint16_t* pattern) {
+  return HWY_DYNAMIC_DISPATCH(AdjustQuadRow)(above, upper, lower, upper_codes, lower_codes, quads, initial_row,
+                                             pattern);
 }
 
 std::size_t quad_counts(const std::uint8_t* lengths, const std::uint8_t* lengths_below_top, std::size_t width,

@@ -62,48 +62,28 @@ std::size_t quad_counts(const std::uint8_t* lengths, const std::uint8_t* lengths
 void stripe_columns(const std::uint32_t* stripe, const std::uint8_t* fraction, std::size_t width, std::size_t stride,
                     int rows, int p, std::int32_t threshold, std::uint8_t* columns);
 
-// A row pair of an HT block's arrays (row 1's pointers null for a block's last, odd row): what
-// raise_in_quads reads, and what it writes.
-struct RaiseSource {
-  const std::uint32_t* magnitude[2];
-  const std::uint8_t* fraction[2];
-  const std::uint8_t* length[2];
-  const std::uint8_t* length_below_top[2];
-};
-struct RaiseTarget {
-  std::uint32_t* magnitude[2];
-  std::uint8_t* length[2];
-  std::uint8_t* length_below_top[2];
-};
-
-// Raising near-significant samples in the cleanup on plane p (ht_block_encoder.cpp): in a row pair
-// of `width` samples, every sample below 2^p whose magnitude * 256 + fraction reaches `threshold`
-// and whose quad (columns 2k, 2k + 1 of both rows) has a sample at or above 2^p is written to `out`
-// as 2^p (bit lengths p + 1 and 0); the others as they are in `in`.
-// Returns how many were raised and adds their magnitude * 256 + fraction to key_sum. p <= 13 (so
-// that those fit in 21 bits and their sums in a lane).
-std::uint32_t raise_in_quads(const RaiseSource& in, std::size_t width, int p, std::int32_t threshold,
-                             const RaiseTarget& out, std::uint64_t* key_sum);
-
-// Lowering quads' exponents in the cleanup on plane p (ht_block_encoder.cpp, README "Lowering
-// quads' exponents"), in two steps on the cleanup's exponent grid. First, per sample: 255 unless
-// its index mu = magnitude >> p is the smallest of its exponent (mu >= 2, mu - 1 a power of two),
-// else its offset within that index in 256ths of 2^p, ((magnitude mod 2^p) * 256 + fraction) >> p,
-// at most 254. p <= 23.
-void lowering_offsets(const std::uint32_t* magnitude, const std::uint8_t* fraction, std::size_t n, int p,
-                      std::uint8_t* offsets);
-// Then per row of quads, on the exponent cells quad_row_analysis reads (and offsets laid out
-// alike): a quad whose largest exponent E >= 2 exceeds kappa (as quad_row_analysis finds it, from
-// the cells above as they stand) and whose samples at E have offsets summing to less than 256 /
-// kLowerDenominator per significant sample gets those samples' exponents lowered by one, in `upper`
-// and `lower`; pattern[q] says which (bit k: the quad's sample k, left column top and bottom, then
-// the right column's). Samples not at the smallest index of E carry 255, which no sum passes.
-// Reads as quad_row_analysis does, rewrites the cells it reads (changing only the row's quads') and
-// writes up to kQuadRowOverwrite patterns past `quads`. Returns whether any quad was lowered.
+// The cleanup's choice of indices (ht_block_encoder.cpp; README, "Raising near-significant
+// samples" and "Lowering quads' exponents"), in two steps on its exponent grid. First, a code per
+// sample: its offset within its index mu = magnitude >> p, in 256ths of 2^p ((magnitude mod 2^p) *
+// 256 + fraction) >> p, at most kLargestLoweringOffset) where mu is the smallest index of its
+// exponent (mu >= 2, mu - 1 a power of two); kRaise where mu is 0 and magnitude * 256 + fraction
+// reaches raise_threshold (0: never); else kNoAdjustment. p <= 23.
+inline constexpr std::uint8_t kLargestLoweringOffset = 200, kRaise = 254, kNoAdjustment = 255;
+void adjustment_codes(const std::uint32_t* magnitude, const std::uint8_t* fraction, std::size_t n, int p,
+                      std::uint32_t raise_threshold, std::uint8_t* codes);
+// Then per row of quads, on the exponent cells quad_row_analysis reads (and codes laid out alike):
+// 1. Raising: in a quad with a significant sample, every sample coded kRaise gets exponent 1.
+// 2. Lowering: a quad whose largest exponent E >= 2 exceeds kappa (as quad_row_analysis finds it,
+//    from the cells above as they stand) and whose samples at E have offsets summing to less than
+//    256 / kLowerDenominator per significant sample gets those samples' exponents lowered by one.
+// The cells change in `upper` and `lower`; pattern[q] says which samples: bit k lowered, bit 4 + k
+// raised, k the quad's sample (left column top and bottom, then the right column's). Reads as
+// quad_row_analysis does, rewrites the cells it reads (changing only the row's quads') and writes
+// up to kQuadRowOverwrite patterns past `quads`. Returns whether any sample changed.
 inline constexpr std::uint16_t kLowerDenominator = 10;
-bool lower_quad_row(const std::uint8_t* above, std::uint8_t* upper, std::uint8_t* lower,
-                    const std::uint8_t* upper_offsets, const std::uint8_t* lower_offsets, std::size_t quads,
-                    bool initial_row, std::uint16_t* pattern);
+bool adjust_quad_row(const std::uint8_t* above, std::uint8_t* upper, std::uint8_t* lower,
+                     const std::uint8_t* upper_codes, const std::uint8_t* lower_codes, std::size_t quads,
+                     bool initial_row, std::uint16_t* pattern);
 
 // The bits of a stripe's column bytes (stripe_columns') as row masks, 64 columns a word: bit x % 64
 // of masks[b * words + x / 64] is bit b of columns[x], for x < width (every other bit 0). `words`

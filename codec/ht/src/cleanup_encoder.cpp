@@ -38,7 +38,7 @@ class SampleGrid {
       : width_(width),
         stride_(static_cast<std::size_t>(width) + 2 * kBorder),
         exponents_(thread_buffer<0>()),
-        offsets_(thread_buffer<1>()) {
+        codes_(thread_buffer<1>()) {
     // Every cell is written, the borders and what follows the last row with 0, so the buffer
     // needs no clearing first (it held another block's cells, in another layout).
     const std::size_t rows_end = stride_ * (static_cast<std::size_t>(height) + 1);
@@ -51,12 +51,12 @@ class SampleGrid {
       std::uint8_t* cells = cells_ + cell(0, y);
       const auto p = static_cast<std::uint8_t>(plane);
       std::memset(cells - kBorder, 0, kBorder);
-      std::uint8_t bits = 0;  // a bit above the lowest: an exponent of 2 or more
+      std::uint8_t bits = 0;  // the OR of the row's exponents
       for (int x = 0; x < width; ++x) {
         cells[x] = exponent(length[x], below_top[x], p);
-        bits |= cells[x] & 0xFE;
+        bits |= cells[x];
       }
-      rows_above_one_[static_cast<std::size_t>(y)] = bits != 0;
+      row_exponents_[static_cast<std::size_t>(y)] = bits;
       std::memset(cells + width, 0, kBorder);
     }
     std::memset(cells_ + rows_end, 0, stride_ + kRowOverread);
@@ -65,28 +65,29 @@ class SampleGrid {
   const std::uint8_t* cells_at(int x, int y) const { return cells_ + cell(x, y); }
   std::uint8_t* cells_at(int x, int y) { return cells_ + cell(x, y); }
 
-  // Lowering's offsets (simd::lowering_offsets), laid out as the cells, made row by row as the
-  // quad rows that may lower need them (rows_with_offsets).
-  void prepare_lowering_offsets() {
-    // Only the block's cells are read for what they hold (outside it no sample is at a quad's
-    // largest exponent), so the rest keeps whatever it held.
-    offsets_.resize(exponents_.size());
-    offset_cells_ = offsets_.data();
+  // The adjustment codes (simd::adjustment_codes), laid out as the cells, made row by row as the
+  // quad rows that may change need them (rows_with_codes).
+  void prepare_adjustment_codes() {
+    // Outside the block no sample may change: a quad on its right or bottom edge reads those
+    // cells too (and a stale kRaise there would make a sample outside the block significant).
+    codes_.assign(exponents_.size(), simd::kNoAdjustment);
+    code_cells_ = codes_.data();
   }
-  void rows_with_offsets(std::span<const std::uint32_t> magnitudes, std::span<const std::uint8_t> fractions, int y0,
-                         int y1, int plane) {
+  void rows_with_codes(std::span<const std::uint32_t> magnitudes, const CleanupAdjustment& adjustment, int y0, int y1,
+                       int plane) {
     for (int y = y0; y < y1; ++y)
-      simd::lowering_offsets(magnitudes.data() + index(0, y), fractions.data() + index(0, y),
-                             static_cast<std::size_t>(width_), plane, offset_cells_ + cell(0, y));
+      simd::adjustment_codes(magnitudes.data() + index(0, y), adjustment.fractions.data() + index(0, y),
+                             static_cast<std::size_t>(width_), plane, adjustment.raise_threshold,
+                             code_cells_ + cell(0, y));
   }
-  // Whether any sample of rows y0 .. y1 - 1 has an exponent of 2 or more (else no quad lowers),
-  // as the grid was made (before any lowering).
-  bool any_exponent_above_one(int y0, int y1) const {
-    bool any = false;
-    for (int y = y0; y < y1; ++y) any |= rows_above_one_[static_cast<std::size_t>(y)] != 0;
-    return any;
+  // Whether rows y0 .. y1 - 1 may change, as the grid was made: with raising, a significant sample
+  // (an exponent of 1 or more); without, an exponent of 2 or more.
+  bool may_adjust(int y0, int y1, bool raising) const {
+    std::uint8_t any = 0;
+    for (int y = y0; y < y1; ++y) any |= row_exponents_[static_cast<std::size_t>(y)];
+    return (any & (raising ? 0xFF : 0xFE)) != 0;
   }
-  const std::uint8_t* offsets_at(int x, int y) const { return offset_cells_ + cell(x, y); }
+  const std::uint8_t* codes_at(int x, int y) const { return code_cells_ + cell(x, y); }
 
  private:
   template <int kWhich>
@@ -107,12 +108,12 @@ class SampleGrid {
   int width_;
   std::size_t stride_;
   std::vector<std::uint8_t>& exponents_;
-  std::vector<std::uint8_t>& offsets_;
+  std::vector<std::uint8_t>& codes_;
   // Its cells, read through a plain pointer: GCC otherwise recomputes the thread_local vector's
   // address (a call to __tls_get_addr in a shared library) at reads in the quad loop.
   std::uint8_t* cells_ = nullptr;
-  std::uint8_t* offset_cells_ = nullptr;
-  std::array<std::uint8_t, 1024> rows_above_one_;  // per row (at most 1024), set as the grid is made
+  std::uint8_t* code_cells_ = nullptr;
+  std::array<std::uint8_t, 1024> row_exponents_;  // per row (at most 1024): the OR of its exponents
 };
 
 // simd::quad_row_analysis writes each quad's index in VlcEncodingTable's layout.
@@ -266,7 +267,7 @@ std::vector<std::uint8_t> assemble(const std::vector<std::uint8_t>& magsgn, MelP
 std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitudes,
                                          std::span<const std::uint8_t> negative, std::span<const std::uint8_t> lengths,
                                          std::span<const std::uint8_t> lengths_below_top, int width, int height,
-                                         int plane, const CleanupLowering* lowering) {
+                                         int plane, const CleanupAdjustment* adjustment) {
   if (width < 1 || height < 1 || width > 1024 || height > 1024 || width * height > 4096)
     throw std::invalid_argument("HT cleanup: a code-block of " + std::to_string(width) + "x" + std::to_string(height) +
                                 " is outside 1..1024 with at most 4096 samples");
@@ -275,10 +276,11 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
       lengths_below_top.size() != samples)
     throw std::invalid_argument("HT cleanup: magnitudes, signs and bit lengths must hold width * height samples");
   if (plane < 0 || plane > 30) throw std::invalid_argument("HT cleanup: the plane must be 0..30");
-  if (lowering && (lowering->fractions.size() != samples || plane > 23 || !lowering->lowered))
-    throw std::invalid_argument("HT cleanup: lowering needs a fraction per sample, a plane of at most 23 and a list");
+  if (adjustment &&
+      (adjustment->fractions.size() != samples || plane > 23 || !adjustment->lowered || !adjustment->raised))
+    throw std::invalid_argument("HT cleanup: adjusting needs a fraction per sample, a plane of at most 23 and lists");
   SampleGrid grid(lengths, lengths_below_top, width, height, plane);
-  if (lowering) grid.prepare_lowering_offsets();
+  if (adjustment) grid.prepare_adjustment_codes();
   const int quads_wide = (width + 1) / 2, quads_high = (height + 1) / 2;
 
   // Room for what a cleanup near a lossy cut usually takes (a 64x64 block's some hundreds of bytes
@@ -299,18 +301,19 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
   exponent_buffer.resize(static_cast<std::size_t>(quads_wide) + simd::kQuadRowOverwrite);
   std::uint16_t* const indices = index_buffer.data();
   std::uint16_t* const exponents = exponent_buffer.data();
-  pattern_buffer.resize(lowering ? static_cast<std::size_t>(quads_wide) + simd::kQuadRowOverwrite : 0);
+  pattern_buffer.resize(adjustment ? static_cast<std::size_t>(quads_wide) + simd::kQuadRowOverwrite : 0);
   std::uint16_t* const patterns = pattern_buffer.data();
   for (int qy = 0; qy < quads_high; ++qy) {
     const bool initial_row = qy == 0;
     const VlcEncodingTable& table = vlc_encoding_table(initial_row ? QuadRowKind::Initial : QuadRowKind::Other);
-    bool lowers = lowering && grid.any_exponent_above_one(2 * qy, std::min(2 * qy + 2, height));
-    if (lowers) {
-      grid.rows_with_offsets(magnitudes, lowering->fractions, 2 * qy, std::min(2 * qy + 2, height), plane);
-      lowers =
-          simd::lower_quad_row(grid.cells_at(0, 2 * qy - 1), grid.cells_at(0, 2 * qy), grid.cells_at(0, 2 * qy + 1),
-                               grid.offsets_at(0, 2 * qy), grid.offsets_at(0, 2 * qy + 1),
-                               static_cast<std::size_t>(quads_wide), initial_row, patterns);
+    const int rows_end = std::min(2 * qy + 2, height);
+    bool adjusts = adjustment && grid.may_adjust(2 * qy, rows_end, adjustment->raise_threshold != 0);
+    if (adjusts) {
+      grid.rows_with_codes(magnitudes, *adjustment, 2 * qy, rows_end, plane);
+      adjusts =
+          simd::adjust_quad_row(grid.cells_at(0, 2 * qy - 1), grid.cells_at(0, 2 * qy), grid.cells_at(0, 2 * qy + 1),
+                                grid.codes_at(0, 2 * qy), grid.codes_at(0, 2 * qy + 1),
+                                static_cast<std::size_t>(quads_wide), initial_row, patterns);
     }
     simd::quad_row_analysis(grid.cells_at(0, 2 * qy - 1), grid.cells_at(0, 2 * qy), grid.cells_at(0, 2 * qy + 1),
                             static_cast<std::size_t>(quads_wide), initial_row, indices, exponents);
@@ -320,19 +323,23 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
       simd::quad_magsgn(magnitudes.data() + upper, has_lower ? magnitudes.data() + upper + w : nullptr,
                         negative.data() + upper, has_lower ? negative.data() + upper + w : nullptr, w, plane,
                         magsgn_values);
-      // A lowered sample's index is one less: v = 2 (mu - 1) + sign two less.
-      for (int qx = 0; lowers && qx < quads_wide; ++qx) {
-        // Four quads at a time where none was lowered (most).
+      // A lowered sample's index is one less, a raised one's 1 instead of 0: v = 2 (mu - 1) + sign
+      // two less, or two more.
+      for (int qx = 0; adjusts && qx < quads_wide; ++qx) {
+        // Four quads at a time where none changed (most).
         std::uint64_t four;
         if (qx + 4 <= quads_wide && (std::memcpy(&four, patterns + qx, sizeof four), four == 0)) {
           qx += 3;
           continue;
         }
         for (unsigned bits = patterns[qx]; bits != 0; bits &= bits - 1) {
-          const int k = std::countr_zero(bits);
-          magsgn_values[4 * static_cast<std::size_t>(qx) + static_cast<std::size_t>(k)] -= 2;
-          lowering->lowered->push_back(upper + static_cast<std::size_t>(k & 1) * w + 2 * static_cast<std::size_t>(qx) +
-                                       static_cast<std::size_t>(k >> 1));
+          const int b = std::countr_zero(bits), k = b & 3;
+          const bool raised = b >= 4;
+          std::uint32_t& value = magsgn_values[4 * static_cast<std::size_t>(qx) + static_cast<std::size_t>(k)];
+          value = raised ? value + 2 : value - 2;
+          (raised ? adjustment->raised : adjustment->lowered)
+              ->push_back(upper + static_cast<std::size_t>(k & 1) * w + 2 * static_cast<std::size_t>(qx) +
+                          static_cast<std::size_t>(k >> 1));
         }
       }
     }

@@ -59,64 +59,25 @@ std::int32_t raise_threshold(int q, double from) {
   return static_cast<std::int32_t>(std::ceil(from * std::ldexp(256.0, q)));
 }
 
-// The block's magnitudes and bit lengths with the cleanup's raised samples (`any` false: none),
-// and the squared error they change: each raised v leaves (v - 1.5 u)^2 = v^2 + 2.25 u^2 - 3 u v.
-// The buffers are the thread's, kept from block to block.
-struct RaisedCleanup {
-  std::span<const std::uint32_t> magnitudes;
-  std::span<const std::uint8_t> lengths, lengths_below_top;
-  double error_change = 0;
-  bool any = false;
-};
-
-// Cleanups on planes up to 13 raise (simd::raise_in_quads); a higher one is a block of huge
-// indices coded coarsely, where nothing was measured.
-constexpr int kHighestRaisedCleanup = 13;
-
-RaisedCleanup raise_in_significant_quads(const HtBlock& b, int p) {
-  RaisedCleanup r;
-  if (b.fractions.empty() || !b.signs_of_zeros || p > kHighestRaisedCleanup) return r;
-  const auto w = static_cast<std::size_t>(b.width), n = b.magnitudes.size();
-  thread_local std::vector<std::uint32_t> magnitudes;
-  thread_local std::vector<std::uint8_t> lengths, lengths_below_top;
-  magnitudes.resize(n);
-  lengths.resize(n);
-  lengths_below_top.resize(n);
-  const std::int32_t threshold = raise_threshold(p, kCleanupRaiseFrom);
-  std::uint64_t key_sum = 0;
-  std::uint32_t count = 0;
-  for (std::size_t y = 0; y < static_cast<std::size_t>(b.height); y += 2) {
-    const bool pair = y + 1 < static_cast<std::size_t>(b.height);
-    auto row = [&](auto& v, std::size_t r) { return pair || r == y ? v.data() + r * w : nullptr; };
-    const simd::RaiseSource in{{row(b.magnitudes, y), row(b.magnitudes, y + 1)},
-                               {row(b.fractions, y), row(b.fractions, y + 1)},
-                               {row(b.lengths, y), row(b.lengths, y + 1)},
-                               {row(b.lengths_below_top, y), row(b.lengths_below_top, y + 1)}};
-    const simd::RaiseTarget out{{row(magnitudes, y), row(magnitudes, y + 1)},
-                                {row(lengths, y), row(lengths, y + 1)},
-                                {row(lengths_below_top, y), row(lengths_below_top, y + 1)}};
-    count += simd::raise_in_quads(in, w, p, threshold, out, &key_sum);
-  }
-  if (count == 0) return r;
+// Each raised v (below u = 2^p) leaves (v - 1.5 u)^2 = v^2 + 2.25 u^2 - 3 u v: the sum of
+// 2.25 u^2 - 3 u v over them.
+double raised_error_change(const HtBlock& b, int p, std::span<const std::size_t> raised) {
   const double u = two_to(p);
-  r.magnitudes = magnitudes;
-  r.lengths = lengths;
-  r.lengths_below_top = lengths_below_top;
-  r.error_change = 2.25 * u * u * count - 3 * u * (static_cast<double>(key_sum) / 256);
-  r.any = true;
-  return r;
+  double sum = 0;
+  for (const std::size_t i : raised) sum += 2.25 * u * u - 3 * u * value_of(b, i);
+  return sum;
 }
 
 // Lowering quads' exponents (README, "Lowering quads' exponents"; cleanup_encoder.h): a quad's
 // U_q, the bits each of its significant samples sends, is set by its largest exponent E. Where its
 // samples at E all sit just above the smallest index E has (2^(E - 2) + 1; offsets under a tenth
-// of a step per significant sample, simd::lower_quad_row) and kappa, the exponent predicted from
+// of a step per significant sample, simd::adjust_quad_row) and kappa, the exponent predicted from
 // the row above, does not hold U_q up anyway, coding them one index lower saves a bit per
 // significant sample. Each lowered v = (mu + d) u leaves (d + 1/2)^2 u^2 instead of (d - 1/2)^2 u^2
 // after the cleanup (2 d u^2 more), and after MagRef, whose bit is then 1, (d + 1/4)^2 u^2 instead
 // of (d - 1/4)^2 u^2 (d u^2 more: MagRef's decrease grows by d u^2). Planes up to 23 (the
-// offsets' arithmetic), irreversible blocks only.
-constexpr int kHighestLoweredCleanup = 23;
+// offsets' arithmetic), irreversible blocks only; raising too.
+constexpr int kHighestAdjustedCleanup = 23;
 
 // The sum of d u^2 over the lowered samples.
 double lowered_offsets(const HtBlock& b, int p, std::span<const std::size_t> lowered) {
@@ -286,20 +247,23 @@ t1::EncodedBlock encode_ht_block(const HtBlock& b, int magnitude_bitplanes, int 
     return out;
   }
   // With refinement passes after it the cleanup raises nothing: SigProp gets those samples for two
-  // bits, rebuilt nearer (0.75 u), where MagRef would leave a raised one at 1.25 u.
-  const RaisedCleanup raised = refined ? RaisedCleanup{} : raise_in_significant_quads(b, cleanup_plane);
-  const std::span<const std::uint32_t> magnitudes = raised.any ? raised.magnitudes : b.magnitudes;
-  thread_local std::vector<std::size_t> lowered;
+  // bits, rebuilt nearer (0.75 u), where MagRef would leave a raised one at 1.25 u. Raising needs the
+  // signs of zero indices.
+  thread_local std::vector<std::size_t> raised, lowered;
+  raised.clear();
   lowered.clear();
-  const CleanupLowering lowering{b.fractions, &lowered};
-  const bool lowers = !b.fractions.empty() && cleanup_plane <= kHighestLoweredCleanup;
-  out.data = encode_cleanup(magnitudes, b.negative, raised.any ? raised.lengths : b.lengths,
-                            raised.any ? raised.lengths_below_top : b.lengths_below_top, b.width, b.height,
-                            cleanup_plane, lowers ? &lowering : nullptr);
+  const bool raises = !refined && b.signs_of_zeros;
+  const CleanupAdjustment adjustment{
+      b.fractions, raises ? static_cast<std::uint32_t>(raise_threshold(cleanup_plane, kCleanupRaiseFrom)) : 0u, &raised,
+      &lowered};
+  const bool adjusts = !b.fractions.empty() && cleanup_plane <= kHighestAdjustedCleanup;
+  out.data = encode_cleanup(b.magnitudes, b.negative, b.lengths, b.lengths_below_top, b.width, b.height, cleanup_plane,
+                            adjusts ? &adjustment : nullptr);
   const double offsets = lowered_offsets(b, cleanup_plane, lowered);
   out.first_pass_planes = out.bit_planes - cleanup_plane;
   out.missing_msbs = magnitude_bitplanes - 1 - cleanup_plane;
-  const double decrease = measured ? sums.energy - sums.after_cleanup - raised.error_change - 2 * offsets : 0.0;
+  const double decrease =
+      measured ? sums.energy - sums.after_cleanup - raised_error_change(b, cleanup_plane, raised) - 2 * offsets : 0.0;
   out.passes.push_back(t1::PassInfo{out.data.size(), decrease, true});
   if (refined) add_refinement_passes(b, cleanup_plane, distortion, sums.refined + offsets, lowered, out);
   return out;

@@ -54,7 +54,7 @@ struct HtBlock {
   double energy_bound = std::numeric_limits<double>::infinity();
   // Whether `negative` holds the coefficient's sign for indices of 0 too (a float load's): then a
   // sample just under the cleanup plane may be coded as significant (ht_block_encoder.cpp,
-  // raise_near_significant).
+  // "Raising near-significant samples").
   bool signs_of_zeros = false;
 };
 
