@@ -1,5 +1,8 @@
 #pragma once
+#include <algorithm>
+#include <bit>
 #include <cstddef>
+#include <cstring>
 #include <cstdint>
 #include <span>
 
@@ -28,6 +31,28 @@ class MagSgnReader {
 
  private:
   void refill() {
+    if constexpr (std::endian::native == std::endian::little) {
+      // Whole bytes at once while none of them follows a 0xFF: up to the first 0xFF (which itself
+      // carries 8 bits), as many as the accumulator has room for (a lossless block reads some
+      // 10 bits per sample, a byte at a time one refill per byte).
+      if (!last_was_ff_ && pos_ + 8 <= bytes_.size()) {
+        std::uint64_t word;
+        std::memcpy(&word, bytes_.data() + pos_, sizeof word);
+        const std::uint64_t inverted = ~word;  // a 0xFF byte is a zero byte here
+        const std::uint64_t zero_bytes = (inverted - 0x0101010101010101u) & ~inverted & 0x8080808080808080u;
+        const int first_ff = zero_bytes == 0 ? 8 : std::countr_zero(zero_bytes) / 8;  // the lowest is exact
+        const int room = (64 - available_) / 8;
+        const int take = std::min(room, first_ff + 1);
+        if (take > 0) {
+          const std::uint64_t taken = take == 8 ? word : word & ((std::uint64_t{1} << (8 * take)) - 1);
+          acc_ |= taken << available_;
+          available_ += 8 * take;
+          pos_ += static_cast<std::size_t>(take);
+          last_was_ff_ = take == first_ff + 1;
+          return;
+        }
+      }
+    }
     const std::uint8_t byte = pos_ < bytes_.size() ? bytes_[pos_] : 0xFF;
     ++pos_;
     const int bits = last_was_ff_ ? 7 : 8;

@@ -43,79 +43,23 @@ const VlcDecodingTable& vlc_decoding_table(QuadRowKind kind) {
   return kind == QuadRowKind::Initial ? initial : other;
 }
 
-// What the cleanup pass knows of the block so far: significance (known from each quad's rho as soon
-// as its codeword is read, before its magnitudes) and the decoded magnitudes and signs.
-class DecodedGrid {
- public:
-  DecodedGrid(int width, int height)
-      : width_(width),
-        height_(height),
-        mu_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0),
-        negative_(mu_.size(), 0),
-        significant_(mu_.size(), 0) {}
-  bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < width_ && y < height_; }
-  int significant(int x, int y) const { return inside(x, y) ? significant_[index(x, y)] : 0; }
-  // E_n = bit length of 2 mu - 1 (T.814 7.3.7), 0 for an insignificant sample.
-  int exponent(int x, int y) const {
-    if (!inside(x, y)) return 0;
-    const std::uint32_t mu = mu_[index(x, y)];
-    return mu == 0 ? 0 : static_cast<int>(std::bit_width(2 * static_cast<std::uint64_t>(mu) - 1));
-  }
-  void mark_significant(int x, int y) {
-    if (inside(x, y)) significant_[index(x, y)] = 1;
-  }
-  void set(int x, int y, std::uint32_t mu, bool negative) {
-    if (!inside(x, y)) return;
-    mu_[index(x, y)] = mu;
-    negative_[index(x, y)] = negative ? 1 : 0;
-  }
-  std::uint32_t mu(std::size_t i) const { return mu_[i]; }
-  bool negative(std::size_t i) const { return negative_[i] != 0; }
-  bool significant_after_cleanup(int x, int y) const { return inside(x, y) && mu_[index(x, y)] != 0; }
-
- private:
-  std::size_t index(int x, int y) const {
-    return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
-  }
-  int width_, height_;
-  std::vector<std::uint32_t> mu_;
-  std::vector<std::uint8_t> negative_, significant_;
-};
-
-// Context c_q (T.814 7.3.5), as the encoder forms it: in the first row of quads from the four
-// samples to the quad's left; elsewhere from the row above (x0 - 1 .. x0 + 2) and the two samples
-// to its left.
-int quad_context(const DecodedGrid& g, int x0, int y0) {
-  if (y0 == 0) {
-    const int far = g.significant(x0 - 2, 0) | g.significant(x0 - 2, 1);
-    return far | (g.significant(x0 - 1, 0) << 1) | (g.significant(x0 - 1, 1) << 2);
-  }
-  const int north = g.significant(x0 - 1, y0 - 1) | g.significant(x0, y0 - 1);
-  const int west = g.significant(x0 - 1, y0) | g.significant(x0 - 1, y0 + 1);
-  const int east = g.significant(x0 + 1, y0 - 1) | g.significant(x0 + 2, y0 - 1);
-  return north | (west << 1) | (east << 2);
-}
-
-// Exponent predictor kappa_q (T.814 7.3.7): 1 in the first row of quads and for a quad with at
-// most one significant sample; otherwise the largest exponent of the four samples above it less
-// one, at least 1.
-int exponent_predictor(const DecodedGrid& g, int x0, int y0, int rho) {
-  if (y0 == 0 || (rho & (rho - 1)) == 0) return 1;
-  int largest = 0;
-  for (int dx = -1; dx <= 2; ++dx) largest = std::max(largest, g.exponent(x0 + dx, y0 - 1));
-  return std::max(1, largest - 1);
-}
-
 // U-VLC (T.814 7.3.6): the prefix "1", "01", "001", "000" (first bit first) selects u = 1, 2,
 // 3 + a 1-bit suffix, or 5 + a 5-bit suffix, which from 28 on is followed by a 4-bit extension
 // (u = 5 + suffix + 4 extension).
 enum class UvlcPrefix { One, Two, ThreeOrFour, FiveOrMore };
 
 UvlcPrefix read_prefix(VlcReader& vlc) {
-  if (vlc.get(1)) return UvlcPrefix::One;
-  if (vlc.get(1)) return UvlcPrefix::Two;
-  if (vlc.get(1)) return UvlcPrefix::ThreeOrFour;
-  return UvlcPrefix::FiveOrMore;
+  const std::uint32_t bits = vlc.peek7();  // the first bit read in bit 0
+  if (bits & 1) {
+    vlc.skip(1);
+    return UvlcPrefix::One;
+  }
+  if (bits & 2) {
+    vlc.skip(2);
+    return UvlcPrefix::Two;
+  }
+  vlc.skip(3);
+  return (bits & 4) ? UvlcPrefix::ThreeOrFour : UvlcPrefix::FiveOrMore;
 }
 
 // The value a prefix and its suffix give, without the extension.
@@ -181,147 +125,252 @@ void read_pair_residuals(VlcReader& vlc, MelDecoder& mel, const bool* has_residu
         finish_uvlc(vlc, prefixes[static_cast<std::size_t>(i)], suffixes[static_cast<std::size_t>(i)]) + bonus;
 }
 
-struct QuadState {
-  int x0 = 0, y0 = 0;
-  VlcEntry code;
+// ---- The cleanup pass (T.814 7.3) -----------------------------------------------------------------
+
+// The widest row of quads a code-block has (1024 samples, T.800's limit).
+constexpr int kMaxQuadsWide = 512;
+
+// What one row of quads leaves for the next (and what the row being decoded has so far): each
+// quad's significance pattern rho, restricted to the samples inside the block, at [qx + 1], and
+// each sample column's exponent E (T.814 7.3.7: the bit length of 2 mu - 1, 0 for an insignificant
+// sample) of the quad row's bottom sample, at [x + 1]. The entries either side stay 0: a quad or
+// sample beyond the block's edge is insignificant. Every entry inside is written in every row.
+struct QuadRow {
+  std::array<std::uint8_t, kMaxQuadsWide + 2> rho{};
+  std::array<std::uint8_t, 2 * kMaxQuadsWide + 4> bottom_exponent{};
 };
 
-// Reads one quad's significance: a MEL symbol in context 0 (T.814 7.3.4), then, unless the MEL
-// said the quad is empty, its CxtVLC codeword. Marks its significant samples at once: the next
-// quad's context depends on them.
-QuadState read_quad(DecodedGrid& g, const VlcDecodingTable& table, VlcReader& vlc, MelDecoder& mel, int x0, int y0) {
-  QuadState q;
-  q.x0 = x0;
-  q.y0 = y0;
-  const int context = quad_context(g, x0, y0);
-  if (context == 0 && !mel.decode()) return q;
-  q.code = table.lookup(context, vlc.peek7());
-  if (q.code.length == 0) throw HtDecodeError("HT cleanup: a CxtVLC codeword that no table row has");
-  vlc.skip(q.code.length);
-  for (int n = 0; n < 4; ++n)
-    if ((q.code.rho >> n) & 1) g.mark_significant(x0 + kQuadOffsets[n][0], y0 + kQuadOffsets[n][1]);
-  return q;
+// rho's bits of the samples inside the block, for a quad whose right column is (not) inside and
+// whose bottom row is (not) inside: bits 0 and 1 are the left column, 1 and 3 the bottom row.
+constexpr std::uint8_t inside_mask(bool right_inside, bool bottom_inside) {
+  return static_cast<std::uint8_t>((right_inside ? 0xF : 0x3) & (bottom_inside ? 0xF : 0x5));
 }
 
-// MagSgn bits of a quad (T.814 7.3.8): each significant sample's v_n = 2 (mu - 1) + sign in U_q
-// bits, less its top bit where e_k implies it (its value is then e_1's bit).
-void read_magnitudes(DecodedGrid& g, const QuadState& q, int exponent_bits, int plane, MagSgnReader& magsgn) {
+// Context c_q (T.814 7.3.5), as the encoder forms it: in the first row of quads from the four
+// samples to the quad's left (the quad before it, `left`); elsewhere from the row above (x0 - 1 ..
+// x0 + 2: the bottom samples of the quads above-left, above and above-right) and the two samples to
+// its left.
+int first_row_context(std::uint8_t left) {
+  return ((left | (left >> 1)) & 1) | (((left >> 2) & 1) << 1) | (((left >> 3) & 1) << 2);
+}
+int quad_context(std::uint8_t above_left, std::uint8_t above, std::uint8_t above_right, std::uint8_t left) {
+  const int north = ((above_left >> 3) | (above >> 1)) & 1;
+  const int west = ((left >> 2) | (left >> 3)) & 1;
+  const int east = ((above >> 3) | (above_right >> 1)) & 1;
+  return north | (west << 1) | (east << 2);
+}
+
+// Exponent predictor kappa_q (T.814 7.3.7): 1 in the first row of quads and for a quad with at
+// most one significant sample; otherwise the largest exponent of the four samples above it
+// (`above`: theirs, from x0 - 1) less one, at least 1.
+int exponent_predictor(const std::uint8_t* above, bool first_row, int rho) {
+  if (first_row || (rho & (rho - 1)) == 0) return 1;
+  const int largest = std::max(std::max(above[0], above[1]), std::max(above[2], above[3]));
+  return std::max(1, largest - 1);
+}
+
+// Reads one quad's significance: a MEL symbol in context 0 (T.814 7.3.4), then, unless the MEL
+// said the quad is empty, its CxtVLC codeword (a zero entry where it did).
+VlcEntry read_quad(const VlcDecodingTable& table, VlcReader& vlc, MelDecoder& mel, int context) {
+  if (context == 0 && !mel.decode()) return VlcEntry{};
+  const VlcEntry code = table.lookup(context, vlc.peek7());
+  if (code.length == 0) throw HtDecodeError("HT cleanup: a CxtVLC codeword that no table row has");
+  vlc.skip(code.length);
+  return code;
+}
+
+[[noreturn]] void magnitude_too_large(const char* pass) {
+  throw HtDecodeError(std::string("HT ") + pass + ": a magnitude beyond " + std::to_string(kHtMaxMagnitudeBits) +
+                      " bits");
+}
+
+// MagSgn bits of a quad (T.814 7.3.8) whose top-left sample is out[0]: each significant sample's
+// v_n = 2 (mu - 1) + sign in U_q bits, less its top bit where e_k implies it (its value is then
+// e_1's bit). Writes the samples inside the block (`inside`: rho's bits of those) as the header
+// says, sign times (2 mu + 1) << p, and the bottom samples' exponents to bottom[0..1]. Where
+// U_q + p stays within kHtMaxMagnitudeBits no sample can overflow, and a quad wholly inside
+// needs no test per sample: most quads take that path (`Checked` false).
+template <bool Checked>
+void read_quad_magnitudes(const VlcEntry& code, int exponent_bits, int plane, std::uint8_t inside, MagSgnReader& magsgn,
+                          std::int32_t* out, std::size_t stride, std::uint8_t* bottom) {
+  const std::size_t position[4] = {0, stride, 1, stride + 1};
+#pragma GCC unroll 4
   for (int n = 0; n < 4; ++n) {
-    if (!((q.code.rho >> n) & 1)) continue;
-    const int implied = (q.code.e_k >> n) & 1;
+    if (!((code.rho >> n) & 1)) continue;
+    const int implied = (code.e_k >> n) & 1;
     std::uint64_t v = magsgn.get(exponent_bits - implied);
-    if (implied) v |= static_cast<std::uint64_t>((q.code.e_1 >> n) & 1) << (exponent_bits - 1);
+    v |= static_cast<std::uint64_t>(implied & (code.e_1 >> n)) << (exponent_bits - 1);
     const std::uint64_t mu = (v >> 1) + 1;
-    // (2 mu + 1) << p must fit the caller's 31 bits.
-    if (((2 * mu + 1) << plane) >= (std::uint64_t{1} << (kHtMaxMagnitudeBits + 1)))
-      throw HtDecodeError("HT cleanup: a magnitude beyond " + std::to_string(kHtMaxMagnitudeBits) + " bits");
-    g.set(q.x0 + kQuadOffsets[n][0], q.y0 + kQuadOffsets[n][1], static_cast<std::uint32_t>(mu), (v & 1) != 0);
+    const std::uint64_t doubled = (2 * mu + 1) << plane;
+    if constexpr (Checked) {
+      // (2 mu + 1) << p must fit the caller's 31 bits.
+      if (doubled >= (std::uint64_t{1} << (kHtMaxMagnitudeBits + 1))) magnitude_too_large("cleanup");
+      if (!((inside >> n) & 1)) continue;
+    }
+    const auto negative = -static_cast<std::int32_t>(v & 1);  // all ones for a negative sample
+    out[position[n]] = (static_cast<std::int32_t>(doubled) ^ negative) - negative;
+    if (n & 1) bottom[n >> 1] = static_cast<std::uint8_t>(std::bit_width(2 * mu - 1));
+  }
+}
+
+// The cleanup pass over the whole block: `out` (zeroed) gets every significant sample.
+void decode_cleanup(std::span<const std::uint8_t> segment, std::size_t pcup, int plane, int width, int height,
+                    std::int32_t* out) {
+  MagSgnReader magsgn(segment.first(pcup));
+  MelDecoder mel(segment.subspan(pcup));
+  VlcReader vlc(segment.subspan(pcup));
+  // The row of quads above (all 0 for the first) and the one being decoded, swapped after each row.
+  QuadRow rows[2];
+  QuadRow* above_row = &rows[0];
+  QuadRow* this_row = &rows[1];
+  const int quads_wide = (width + 1) / 2, quads_high = (height + 1) / 2;
+  const auto stride = static_cast<std::size_t>(width);
+  for (int qy = 0; qy < quads_high; ++qy) {
+    const bool first_row = qy == 0;
+    const bool bottom_inside = 2 * qy + 1 < height;
+    const VlcDecodingTable& table = vlc_decoding_table(first_row ? QuadRowKind::Initial : QuadRowKind::Other);
+    std::int32_t* row_out = out + static_cast<std::size_t>(2 * qy) * stride;
+    const QuadRow& above = *above_row;
+    QuadRow& row = *this_row;
+    // Quads in pairs (T.814 7.3.1): both quads' significance, their residuals, then MagSgn.
+    for (int qx = 0; qx < quads_wide; qx += 2) {
+      const int count = std::min(2, quads_wide - qx);
+      std::array<VlcEntry, 2> codes{};
+      bool has_residual[2] = {false, false};
+      for (int k = 0; k < count; ++k) {
+        const auto at = static_cast<std::size_t>(qx + k + 1);
+        const int context = first_row
+                                ? first_row_context(row.rho[at - 1])
+                                : quad_context(above.rho[at - 1], above.rho[at], above.rho[at + 1], row.rho[at - 1]);
+        codes[static_cast<std::size_t>(k)] = read_quad(table, vlc, mel, context);
+        // Significance now: the next quad's context depends on it.
+        row.rho[at] = codes[static_cast<std::size_t>(k)].rho & inside_mask(2 * (qx + k) + 1 < width, bottom_inside);
+        has_residual[k] = codes[static_cast<std::size_t>(k)].u_off != 0;
+      }
+      std::array<int, 2> u{};
+      read_pair_residuals(vlc, mel, has_residual, count, first_row, u);
+      for (int k = 0; k < count; ++k) {
+        const VlcEntry& code = codes[static_cast<std::size_t>(k)];
+        const int x0 = 2 * (qx + k);
+        std::uint8_t* bottom = &row.bottom_exponent[static_cast<std::size_t>(x0) + 1];
+        bottom[0] = bottom[1] = 0;
+        if (code.rho == 0) continue;
+        const int exponent_bits =
+            exponent_predictor(&above.bottom_exponent[static_cast<std::size_t>(x0)], first_row, code.rho) +
+            u[static_cast<std::size_t>(k)];
+        if (exponent_bits > 32)
+          throw HtDecodeError("HT cleanup: a quad exponent U_q of " + std::to_string(exponent_bits));
+        // v < 2^U_q, so (2 mu + 1) << p <= (2^U_q + 1) << p, below 2^31 where U_q + p <= 30.
+        const std::uint8_t inside =
+            row.rho[static_cast<std::size_t>(qx + k + 1)] | static_cast<std::uint8_t>(~code.rho & 0xF);
+        if (inside == 0xF && exponent_bits + plane <= kHtMaxMagnitudeBits)
+          read_quad_magnitudes<false>(code, exponent_bits, plane, inside, magsgn, row_out + x0, stride, bottom);
+        else
+          read_quad_magnitudes<true>(code, exponent_bits, plane, inside, magsgn, row_out + x0, stride, bottom);
+      }
+    }
+    std::swap(above_row, this_row);
   }
 }
 
 // ---- The refinement passes (T.814 7.4, 7.5) on plane p - 1 ---------------------------------------
 
 // Both passes visit samples in the order of T.800's passes: stripes of four rows, column by column
-// within a stripe, top to bottom within a column; SigProp in groups of four columns (below).
-class RefinementDecoder {
+// within a stripe, top to bottom within a column; SigProp in groups of four columns (below). Each
+// sample's state is a byte of a grid with a border of one sample all round (so that neighbours need
+// no bounds test): bit 0 significant after the cleanup, bit 1 found significant by SigProp.
+constexpr std::uint8_t kCleanupSignificant = 1, kFoundSignificant = 2;
+
+class RefinementGrid {
  public:
-  RefinementDecoder(const DecodedGrid& cleanup, int width, int height, bool vertically_causal)
-      : cleanup_(cleanup),
-        width_(width),
-        height_(height),
-        vertically_causal_(vertically_causal),
-        became_significant_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0),
-        negative_(became_significant_.size(), 0) {}
+  RefinementGrid(std::span<const std::int32_t> cleanup, int width, int height)
+      : width_(width), height_(height), stride_(static_cast<std::size_t>(width) + 2) {
+    state_.assign(stride_ * (static_cast<std::size_t>(height) + 2), 0);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x)
+        state_[at(x, y)] =
+            cleanup[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] != 0
+                ? kCleanupSignificant
+                : 0;
+  }
 
   // SigProp (T.814 7.4): an insignificant sample with a significant neighbour among its eight gets
   // one bit, 1 making it significant at plane p - 1. As in T.800's significance propagation pass,
   // neighbours visited before it count with what this pass found, later ones with what the cleanup
-  // found, and with vertically causal coding (0x08) the stripe below does not count. The bits come in
-  // groups of four columns of a stripe: the significance bits of the group's samples in visiting
-  // order, then one sign bit (1: negative) for each sample that became significant, in that order.
-  void sig_prop(SigPropReader& bits) {
-    std::vector<std::size_t> found;
+  // found (they have found nothing yet), and with vertically causal coding (0x08) the stripe below
+  // does not count. The bits come in groups of four columns of a stripe: the significance bits of
+  // the group's samples in visiting order, then one sign bit (1: negative) for each sample that
+  // became significant, in that order. Returns those samples, each with its sign.
+  void sig_prop(SigPropReader& bits, bool vertically_causal, std::vector<std::pair<std::size_t, bool>>& found) {
+    found.clear();
     for (int y0 = 0; y0 < height_; y0 += 4) {
       const int y1 = std::min(y0 + 4, height_);
       for (int x0 = 0; x0 < width_; x0 += 4) {
-        found.clear();
+        const std::size_t group = found.size();
         for (int x = x0; x < std::min(x0 + 4, width_); ++x)
           for (int y = y0; y < y1; ++y) {
-            if (cleanup_.significant_after_cleanup(x, y) || !has_significant_neighbour(x, y, y0)) continue;
+            const std::size_t i = at(x, y);
+            if (state_[i] != 0) continue;  // significant already (SigProp never revisits a sample)
+            const bool below_counts = !(vertically_causal && y == y0 + 3);
+            const std::uint8_t* up = &state_[i - stride_];
+            const std::uint8_t* down = &state_[i + stride_];
+            const int neighbours = up[-1] | up[0] | up[1] | state_[i - 1] | state_[i + 1] |
+                                   (below_counts ? down[-1] | down[0] | down[1] : 0);
+            if (neighbours == 0) continue;
             if (bits.bit()) {
-              became_significant_[index(x, y)] = 1;
-              found.push_back(index(x, y));
+              state_[i] = kFoundSignificant;
+              found.emplace_back(index(x, y), false);
             }
           }
-        for (std::size_t i : found) negative_[i] = static_cast<std::uint8_t>(bits.bit());
+        for (std::size_t k = group; k < found.size(); ++k) found[k].second = bits.bit() != 0;
       }
     }
   }
 
   // MagRef (T.814 7.5): every sample significant after the cleanup pass gets its bit at plane p - 1,
-  // in visiting order.
-  void mag_ref(MagRefReader& bits, std::vector<std::uint8_t>& refinement_bit) {
+  // in visiting order: the sample's magnitude moves by half of the cleanup's interval, up for a 1.
+  void mag_ref(MagRefReader& bits, int plane, std::span<std::int32_t> out) {
+    const std::int64_t half = std::int64_t{1} << plane;
     for (int y0 = 0; y0 < height_; y0 += 4)
       for (int x = 0; x < width_; ++x)
-        for (int y = y0; y < std::min(y0 + 4, height_); ++y)
-          if (cleanup_.significant_after_cleanup(x, y))
-            refinement_bit[index(x, y)] = static_cast<std::uint8_t>(bits.bit());
+        for (int y = y0; y < std::min(y0 + 4, height_); ++y) {
+          if (state_[at(x, y)] != kCleanupSignificant) continue;
+          std::int32_t& v = out[index(x, y)];
+          const std::int64_t magnitude = (v < 0 ? -static_cast<std::int64_t>(v) : v) + (bits.bit() ? half : -half);
+          if (magnitude >= (std::int64_t{1} << (kHtMaxMagnitudeBits + 1))) magnitude_too_large("refinement");
+          v = static_cast<std::int32_t>(v < 0 ? -magnitude : magnitude);
+        }
   }
 
-  bool became_significant(std::size_t i) const { return became_significant_[i] != 0; }
-  bool negative(std::size_t i) const { return negative_[i] != 0; }
-
  private:
+  std::size_t at(int x, int y) const {
+    return (static_cast<std::size_t>(y) + 1) * stride_ + static_cast<std::size_t>(x) + 1;
+  }
   std::size_t index(int x, int y) const {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
   }
-  bool has_significant_neighbour(int x, int y, int stripe_top) const {
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int nx = x + dx, ny = y + dy;
-        if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= width_ || ny >= height_) continue;
-        if (ny >= stripe_top + 4 && vertically_causal_) continue;
-        if (cleanup_.significant_after_cleanup(nx, ny) || became_significant_[index(nx, ny)]) return true;
-      }
-    return false;
-  }
-
-  const DecodedGrid& cleanup_;
   int width_, height_;
-  bool vertically_causal_;
-  std::vector<std::uint8_t> became_significant_, negative_;
+  std::size_t stride_;
+  std::vector<std::uint8_t> state_;
 };
 
-// The SigProp and MagRef passes after the cleanup, and the samples they leave (see the header).
-void refine(const DecodedGrid& grid, const HtCodewords& block, int width, int height, std::span<std::int32_t> out) {
+// The SigProp and MagRef passes after the cleanup, on the cleanup's samples in `out` (see the
+// header for what they leave).
+void refine(const HtCodewords& block, int width, int height, std::span<std::int32_t> out) {
   if (block.cleanup_plane < 1)
     throw HtDecodeError("HT refinement passes after a cleanup pass on bit-plane 0 (there is no plane below it)");
   const int plane = block.cleanup_plane - 1;
-  RefinementDecoder passes(grid, width, height, block.vertically_causal);
+  RefinementGrid grid(out, width, height);
   SigPropReader sig_prop_bits(block.refinement);
-  passes.sig_prop(sig_prop_bits);
-  const bool mag_ref = block.refinement_passes >= 2;
-  std::vector<std::uint8_t> refinement_bit;
-  if (mag_ref) {
-    refinement_bit.assign(out.size(), 0);
+  std::vector<std::pair<std::size_t, bool>> found;
+  grid.sig_prop(sig_prop_bits, block.vertically_causal, found);
+  if (block.refinement_passes >= 2) {
     MagRefReader mag_ref_bits(block.refinement);
-    passes.mag_ref(mag_ref_bits, refinement_bit);
+    grid.mag_ref(mag_ref_bits, plane, out);
   }
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    const std::uint64_t mu = grid.mu(i);
-    std::uint64_t doubled = 0;  // twice the reconstructed magnitude
-    bool negative = false;
-    if (mu != 0) {
-      doubled = mag_ref ? (2 * (2 * mu + refinement_bit[i]) + 1) << plane : (2 * mu + 1) << (plane + 1);
-      negative = grid.negative(i);
-    } else if (passes.became_significant(i)) {
-      doubled = std::uint64_t{3} << plane;
-      negative = passes.negative(i);
-    }
-    if (doubled >= (std::uint64_t{1} << (kHtMaxMagnitudeBits + 1)))
-      throw HtDecodeError("HT refinement: a magnitude beyond " + std::to_string(kHtMaxMagnitudeBits) + " bits");
-    out[i] = negative ? -static_cast<std::int32_t>(doubled) : static_cast<std::int32_t>(doubled);
-  }
+  // Found by SigProp: rebuilt at 1.5 times plane p - 1's step.
+  const auto found_magnitude = static_cast<std::int32_t>(3) << plane;
+  for (const auto& [i, negative] : found) out[i] = negative ? -found_magnitude : found_magnitude;
 }
 
 }  // namespace
@@ -344,47 +393,8 @@ void decode_ht_block(const HtCodewords& block, int width, int height, std::span<
   if (scup < 2 || scup > d.size() || scup > 4079)
     throw HtDecodeError("HT cleanup: Scup " + std::to_string(scup) + " does not fit a segment of " +
                         std::to_string(d.size()) + " bytes");
-  const std::size_t pcup = d.size() - scup;
-  MagSgnReader magsgn(d.first(pcup));
-  MelDecoder mel(d.subspan(pcup));
-  VlcReader vlc(d.subspan(pcup));
-
-  DecodedGrid grid(width, height);
-  const int quads_wide = (width + 1) / 2, quads_high = (height + 1) / 2;
-  for (int qy = 0; qy < quads_high; ++qy) {
-    const bool initial_row = qy == 0;
-    const VlcDecodingTable& table = vlc_decoding_table(initial_row ? QuadRowKind::Initial : QuadRowKind::Other);
-    // Quads in pairs (T.814 7.3.1): both quads' significance, their residuals, then MagSgn.
-    for (int qx = 0; qx < quads_wide; qx += 2) {
-      const int count = std::min(2, quads_wide - qx);
-      std::array<QuadState, 2> quads;
-      bool has_residual[2] = {false, false};
-      for (int k = 0; k < count; ++k) {
-        quads[static_cast<std::size_t>(k)] = read_quad(grid, table, vlc, mel, 2 * (qx + k), 2 * qy);
-        has_residual[k] = quads[static_cast<std::size_t>(k)].code.u_off != 0;
-      }
-      std::array<int, 2> u{};
-      read_pair_residuals(vlc, mel, has_residual, count, initial_row, u);
-      for (int k = 0; k < count; ++k) {
-        const QuadState& q = quads[static_cast<std::size_t>(k)];
-        if (q.code.rho == 0) continue;
-        const int exponent_bits = exponent_predictor(grid, q.x0, q.y0, q.code.rho) + u[static_cast<std::size_t>(k)];
-        if (exponent_bits > 32)
-          throw HtDecodeError("HT cleanup: a quad exponent U_q of " + std::to_string(exponent_bits));
-        read_magnitudes(grid, q, exponent_bits, block.cleanup_plane, magsgn);
-      }
-    }
-  }
-  if (block.refinement_passes <= 0) {
-    for (std::size_t i = 0; i < samples; ++i) {
-      const std::uint32_t mu = grid.mu(i);
-      if (mu == 0) continue;
-      const auto magnitude = static_cast<std::int32_t>((2 * mu + 1) << block.cleanup_plane);
-      out[i] = grid.negative(i) ? -magnitude : magnitude;
-    }
-    return;
-  }
-  refine(grid, block, width, height, out);
+  decode_cleanup(d, d.size() - scup, block.cleanup_plane, width, height, out.data());
+  if (block.refinement_passes > 0) refine(block, width, height, out);
 }
 
 }  // namespace codec::ht
