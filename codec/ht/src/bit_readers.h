@@ -21,7 +21,15 @@ class MagSgnReader {
   explicit MagSgnReader(std::span<const std::uint8_t> bytes) : bytes_(bytes) {}
   // The next `count` bits (count <= 32), the first read in bit 0.
   std::uint32_t get(int count) {
+    ensure(count);
+    return take(count);
+  }
+  // Makes the next `count` bits (count <= 56) available to take() without further reads.
+  void ensure(int count) {
     while (available_ < count) refill();
+  }
+  // The next `count` bits (count <= 32) of those ensure() made available.
+  std::uint32_t take(int count) {
     const std::uint64_t mask = (std::uint64_t{1} << count) - 1;
     const auto value = static_cast<std::uint32_t>(acc_ & mask);
     acc_ >>= count;

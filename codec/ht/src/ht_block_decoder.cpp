@@ -9,6 +9,7 @@
 #include "bit_readers.h"
 #include "block_geometry.h"
 #include "codec/ht/cxt_vlc_table.h"
+#include "simd_dispatch/scalar_clones.h"
 
 namespace codec::ht {
 namespace {
@@ -140,11 +141,10 @@ struct QuadRow {
   std::array<std::uint8_t, 2 * kMaxQuadsWide + 4> bottom_exponent{};
 };
 
-// rho's bits of the samples inside the block, for a quad whose right column is (not) inside and
-// whose bottom row is (not) inside: bits 0 and 1 are the left column, 1 and 3 the bottom row.
-constexpr std::uint8_t inside_mask(bool right_inside, bool bottom_inside) {
-  return static_cast<std::uint8_t>((right_inside ? 0xF : 0x3) & (bottom_inside ? 0xF : 0x5));
-}
+// rho's bits of the samples of a row of quads inside the block: bits 1 and 3 are the bottom row; a
+// quad whose right column is outside (the last of an odd width) keeps bits 0 and 1 alone.
+constexpr std::uint8_t row_inside_mask(bool bottom_inside) { return bottom_inside ? 0xF : 0x5; }
+constexpr std::uint8_t kLeftColumn = 0x3;
 
 // Context c_q (T.814 7.3.5), as the encoder forms it: in the first row of quads from the four
 // samples to the quad's left (the quad before it, `left`); elsewhere from the row above (x0 - 1 ..
@@ -169,14 +169,23 @@ int exponent_predictor(const std::uint8_t* above, bool first_row, int rho) {
   return std::max(1, largest - 1);
 }
 
+// What stopped a malformed cleanup pass, for decode_ht_block to throw: the cleanup decoder itself
+// does not throw, because GCC's x86-64-v3 clone of it (target_clones) ended the program at a throw
+// (std::terminate) instead of unwinding.
+struct CleanupFault {
+  enum class Kind { None, Codeword, Exponent, Magnitude } kind = Kind::None;
+  int exponent = 0;  // U_q, for Kind::Exponent
+};
+
 // Reads one quad's significance: a MEL symbol in context 0 (T.814 7.3.4), then, unless the MEL
-// said the quad is empty, its CxtVLC codeword (a zero entry where it did).
-VlcEntry read_quad(const VlcDecodingTable& table, VlcReader& vlc, MelDecoder& mel, int context) {
-  if (context == 0 && !mel.decode()) return VlcEntry{};
-  const VlcEntry code = table.lookup(context, vlc.peek7());
-  if (code.length == 0) throw HtDecodeError("HT cleanup: a CxtVLC codeword that no table row has");
+// said the quad is empty, its CxtVLC codeword (a zero entry where it did). False where the bits
+// start no codeword of the table.
+bool read_quad(const VlcDecodingTable& table, VlcReader& vlc, MelDecoder& mel, int context, VlcEntry& code) {
+  code = VlcEntry{};
+  if (context == 0 && !mel.decode()) return true;
+  code = table.lookup(context, vlc.peek7());
   vlc.skip(code.length);
-  return code;
+  return code.length != 0;
 }
 
 [[noreturn]] void magnitude_too_large(const char* pass) {
@@ -186,36 +195,57 @@ VlcEntry read_quad(const VlcDecodingTable& table, VlcReader& vlc, MelDecoder& me
 
 // MagSgn bits of a quad (T.814 7.3.8) whose top-left sample is out[0]: each significant sample's
 // v_n = 2 (mu - 1) + sign in U_q bits, less its top bit where e_k implies it (its value is then
-// e_1's bit). Writes the samples inside the block (`inside`: rho's bits of those) as the header
-// says, sign times (2 mu + 1) << p, and the bottom samples' exponents to bottom[0..1]. Where
-// U_q + p stays within kHtMaxMagnitudeBits no sample can overflow, and a quad wholly inside
-// needs no test per sample: most quads take that path (`Checked` false).
+// e_1's bit). Writes the quad's samples inside the block (`inside`: rho's bit positions of those)
+// as the header says, sign times (2 mu + 1) << p = ((v_n less its sign bit) + 3) << p, and 0 for
+// the insignificant ones, and the bottom samples' exponents E = bit length of 2 mu - 1 = that of
+// v_n with its sign bit set. Where U_q + p stays within kHtMaxMagnitudeBits no sample can
+// overflow, and for a quad wholly inside whose bits one read of the stream covers (ensure() called
+// for them) there is no test per sample: most quads take that path (`Checked` false). False where
+// a magnitude overflows.
 template <bool Checked>
-void read_quad_magnitudes(const VlcEntry& code, int exponent_bits, int plane, std::uint8_t inside, MagSgnReader& magsgn,
+bool read_quad_magnitudes(const VlcEntry& code, int exponent_bits, int plane, std::uint8_t inside, MagSgnReader& magsgn,
                           std::int32_t* out, std::size_t stride, std::uint8_t* bottom) {
   const std::size_t position[4] = {0, stride, 1, stride + 1};
+  const unsigned implied_ones = code.e_k & code.e_1;  // the top bits e_k implies that are 1
 #pragma GCC unroll 4
   for (int n = 0; n < 4; ++n) {
-    if (!((code.rho >> n) & 1)) continue;
-    const int implied = (code.e_k >> n) & 1;
-    std::uint64_t v = magsgn.get(exponent_bits - implied);
-    v |= static_cast<std::uint64_t>(implied & (code.e_1 >> n)) << (exponent_bits - 1);
-    const std::uint64_t mu = (v >> 1) + 1;
-    const std::uint64_t doubled = (2 * mu + 1) << plane;
+    const bool in_block = !Checked || ((inside >> n) & 1);
+    if (!((code.rho >> n) & 1)) {
+      if (in_block) out[position[n]] = 0;
+      continue;
+    }
+    const int bits = exponent_bits - ((code.e_k >> n) & 1);
+    const std::uint64_t v = (Checked ? magsgn.get(bits) : magsgn.take(bits)) |
+                            (static_cast<std::uint64_t>((implied_ones >> n) & 1) << (exponent_bits - 1));
+    const std::uint64_t doubled = ((v & ~std::uint64_t{1}) + 3) << plane;
     if constexpr (Checked) {
       // (2 mu + 1) << p must fit the caller's 31 bits.
-      if (doubled >= (std::uint64_t{1} << (kHtMaxMagnitudeBits + 1))) magnitude_too_large("cleanup");
-      if (!((inside >> n) & 1)) continue;
+      if (doubled >= (std::uint64_t{1} << (kHtMaxMagnitudeBits + 1))) return false;
+      if (!in_block) continue;
     }
     const auto negative = -static_cast<std::int32_t>(v & 1);  // all ones for a negative sample
     out[position[n]] = (static_cast<std::int32_t>(doubled) ^ negative) - negative;
-    if (n & 1) bottom[n >> 1] = static_cast<std::uint8_t>(std::bit_width(2 * mu - 1));
+    if (n & 1) bottom[n >> 1] = static_cast<std::uint8_t>(std::bit_width(v | 1));
   }
+  return true;
 }
 
-// The cleanup pass over the whole block: `out` (zeroed) gets every significant sample.
-void decode_cleanup(std::span<const std::uint8_t> segment, std::size_t pcup, int plane, int width, int height,
-                    std::int32_t* out) {
+// An insignificant quad's samples inside the block (`inside` as above): 0.
+void clear_quad(std::uint8_t inside, std::int32_t* out, std::size_t stride) {
+  if (inside & 1) out[0] = 0;
+  if (inside & 2) out[stride] = 0;
+  if (inside & 4) out[1] = 0;
+  if (inside & 8) out[stride + 1] = 0;
+}
+
+// The largest U_q whose quad's MagSgn bits (four samples' at most) one ensure() covers.
+constexpr int kOneReadExponent = 14;
+
+// The cleanup pass over the whole block: writes every sample of `out` unless it finds a fault. Built for
+// x86-64-v3 as well (simd_dispatch/scalar_clones.h), everything inlined into it.
+[[gnu::flatten, GPUJ2K_X86_64_V3_CLONES]] CleanupFault decode_cleanup(std::span<const std::uint8_t> segment,
+                                                                      std::size_t pcup, int plane, int width,
+                                                                      int height, std::int32_t* out) {
   MagSgnReader magsgn(segment.first(pcup));
   MelDecoder mel(segment.subspan(pcup));
   VlcReader vlc(segment.subspan(pcup));
@@ -227,7 +257,7 @@ void decode_cleanup(std::span<const std::uint8_t> segment, std::size_t pcup, int
   const auto stride = static_cast<std::size_t>(width);
   for (int qy = 0; qy < quads_high; ++qy) {
     const bool first_row = qy == 0;
-    const bool bottom_inside = 2 * qy + 1 < height;
+    const std::uint8_t row_inside = row_inside_mask(2 * qy + 1 < height);
     const VlcDecodingTable& table = vlc_decoding_table(first_row ? QuadRowKind::Initial : QuadRowKind::Other);
     std::int32_t* row_out = out + static_cast<std::size_t>(2 * qy) * stride;
     const QuadRow& above = *above_row;
@@ -236,15 +266,18 @@ void decode_cleanup(std::span<const std::uint8_t> segment, std::size_t pcup, int
     for (int qx = 0; qx < quads_wide; qx += 2) {
       const int count = std::min(2, quads_wide - qx);
       std::array<VlcEntry, 2> codes{};
+      std::array<std::uint8_t, 2> inside{row_inside, row_inside};
+      if (2 * (qx + count) > width) inside[static_cast<std::size_t>(count - 1)] &= kLeftColumn;
       bool has_residual[2] = {false, false};
       for (int k = 0; k < count; ++k) {
         const auto at = static_cast<std::size_t>(qx + k + 1);
         const int context = first_row
                                 ? first_row_context(row.rho[at - 1])
                                 : quad_context(above.rho[at - 1], above.rho[at], above.rho[at + 1], row.rho[at - 1]);
-        codes[static_cast<std::size_t>(k)] = read_quad(table, vlc, mel, context);
+        if (!read_quad(table, vlc, mel, context, codes[static_cast<std::size_t>(k)]))
+          return CleanupFault{CleanupFault::Kind::Codeword};
         // Significance now: the next quad's context depends on it.
-        row.rho[at] = codes[static_cast<std::size_t>(k)].rho & inside_mask(2 * (qx + k) + 1 < width, bottom_inside);
+        row.rho[at] = codes[static_cast<std::size_t>(k)].rho & inside[static_cast<std::size_t>(k)];
         has_residual[k] = codes[static_cast<std::size_t>(k)].u_off != 0;
       }
       std::array<int, 2> u{};
@@ -252,25 +285,32 @@ void decode_cleanup(std::span<const std::uint8_t> segment, std::size_t pcup, int
       for (int k = 0; k < count; ++k) {
         const VlcEntry& code = codes[static_cast<std::size_t>(k)];
         const int x0 = 2 * (qx + k);
+        const std::uint8_t quad_inside = inside[static_cast<std::size_t>(k)];
         std::uint8_t* bottom = &row.bottom_exponent[static_cast<std::size_t>(x0) + 1];
         bottom[0] = bottom[1] = 0;
-        if (code.rho == 0) continue;
+        if (code.rho == 0) {
+          clear_quad(quad_inside, row_out + x0, stride);
+          continue;
+        }
         const int exponent_bits =
             exponent_predictor(&above.bottom_exponent[static_cast<std::size_t>(x0)], first_row, code.rho) +
             u[static_cast<std::size_t>(k)];
-        if (exponent_bits > 32)
-          throw HtDecodeError("HT cleanup: a quad exponent U_q of " + std::to_string(exponent_bits));
-        // v < 2^U_q, so (2 mu + 1) << p <= (2^U_q + 1) << p, below 2^31 where U_q + p <= 30.
-        const std::uint8_t inside =
-            row.rho[static_cast<std::size_t>(qx + k + 1)] | static_cast<std::uint8_t>(~code.rho & 0xF);
-        if (inside == 0xF && exponent_bits + plane <= kHtMaxMagnitudeBits)
-          read_quad_magnitudes<false>(code, exponent_bits, plane, inside, magsgn, row_out + x0, stride, bottom);
-        else
-          read_quad_magnitudes<true>(code, exponent_bits, plane, inside, magsgn, row_out + x0, stride, bottom);
+        if (exponent_bits > 32) return CleanupFault{CleanupFault::Kind::Exponent, exponent_bits};
+        // v < 2^U_q, so (2 mu + 1) << p <= (2^U_q + 1) << p, below 2^31 where U_q + p <= 30. The
+        // unchecked path also takes its bits from one read of the MagSgn stream: at most four
+        // samples of U_q <= 14 bits.
+        if (quad_inside == 0xF && exponent_bits + plane <= kHtMaxMagnitudeBits && exponent_bits <= kOneReadExponent) {
+          magsgn.ensure(4 * exponent_bits);
+          read_quad_magnitudes<false>(code, exponent_bits, plane, quad_inside, magsgn, row_out + x0, stride, bottom);
+        } else if (!read_quad_magnitudes<true>(code, exponent_bits, plane, quad_inside, magsgn, row_out + x0, stride,
+                                               bottom)) {
+          return CleanupFault{CleanupFault::Kind::Magnitude};
+        }
       }
     }
     std::swap(above_row, this_row);
   }
+  return {};
 }
 
 // ---- The refinement passes (T.814 7.4, 7.5) on plane p - 1 ---------------------------------------
@@ -379,9 +419,8 @@ void decode_ht_block(const HtCodewords& block, int width, int height, std::span<
   check_size(width, height);
   const auto samples = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   if (out.size() != samples) throw std::invalid_argument("HT block: the output must hold width * height samples");
-  std::fill(out.begin(), out.end(), 0);
   const std::span<const std::uint8_t> d = block.cleanup;
-  if (d.empty()) return;
+  if (d.empty()) return std::fill(out.begin(), out.end(), 0);
   if (block.cleanup_plane < 0 || block.cleanup_plane >= kHtMaxMagnitudeBits)
     throw HtDecodeError("HT cleanup: bit-plane " + std::to_string(block.cleanup_plane) + " is beyond " +
                         std::to_string(kHtMaxMagnitudeBits - 1));
@@ -393,7 +432,17 @@ void decode_ht_block(const HtCodewords& block, int width, int height, std::span<
   if (scup < 2 || scup > d.size() || scup > 4079)
     throw HtDecodeError("HT cleanup: Scup " + std::to_string(scup) + " does not fit a segment of " +
                         std::to_string(d.size()) + " bytes");
-  decode_cleanup(d, d.size() - scup, block.cleanup_plane, width, height, out.data());
+  const CleanupFault fault = decode_cleanup(d, d.size() - scup, block.cleanup_plane, width, height, out.data());
+  switch (fault.kind) {
+    case CleanupFault::Kind::None:
+      break;
+    case CleanupFault::Kind::Codeword:
+      throw HtDecodeError("HT cleanup: a CxtVLC codeword that no table row has");
+    case CleanupFault::Kind::Exponent:
+      throw HtDecodeError("HT cleanup: a quad exponent U_q of " + std::to_string(fault.exponent));
+    case CleanupFault::Kind::Magnitude:
+      magnitude_too_large("cleanup");
+  }
   if (block.refinement_passes > 0) refine(block, width, height, out);
 }
 
