@@ -238,11 +238,76 @@ void clear_quad(std::uint8_t inside, std::int32_t* out, std::size_t stride) {
   if (inside & 8) out[stride + 1] = 0;
 }
 
+// The residuals u of a pair of quads outside the first row (T.814 7.3.6), for which of the two
+// have one (`with`: bit 0 the first quad, bit 1 the second): both prefixes, read together from one
+// look at the next 6 VLC bits through this table, then both suffixes, then both extensions.
+struct ResidualPrefixes {
+  std::uint8_t length = 0;               // the prefixes' bits
+  std::uint8_t suffix_bits[2] = {0, 0};  // 0, 1 or 5 for each quad (0 for a quad without one)
+  std::uint8_t base[2] = {0, 0};         // u before the suffix: 1, 2, 3 or 5 (0 without one)
+};
+
+class ResidualTable {
+ public:
+  ResidualTable() {
+    for (unsigned with = 1; with < 4; ++with)
+      for (unsigned bits = 0; bits < 64; ++bits) {
+        ResidualPrefixes& e = entries_[with * 64 + bits];
+        unsigned rest = bits;
+        for (int k = 0; k < 2; ++k) {
+          if (!((with >> k) & 1)) continue;
+          // "1", "01", "001", "000", first bit first (T.814 Table 3).
+          const int length = (rest & 1) ? 1 : (rest & 2) ? 2 : 3;
+          const int kind = (rest & 1) ? 0 : (rest & 2) ? 1 : (rest & 4) ? 2 : 3;
+          static constexpr std::uint8_t kBase[4] = {1, 2, 3, 5}, kSuffix[4] = {0, 0, 1, 5};
+          e.base[k] = kBase[kind];
+          e.suffix_bits[k] = kSuffix[kind];
+          e.length = static_cast<std::uint8_t>(e.length + length);
+          rest >>= length;
+        }
+      }
+  }
+  const ResidualPrefixes& at(unsigned with, std::uint32_t bits6) const { return entries_[with * 64 + bits6]; }
+
+ private:
+  std::array<ResidualPrefixes, 4 * 64> entries_{};
+};
+
+const ResidualTable& residual_table() {
+  static const ResidualTable table;
+  return table;
+}
+
+void read_residuals(VlcReader& vlc, unsigned with, std::array<int, 2>& u) {
+  const ResidualPrefixes& e = residual_table().at(with, vlc.peek7() & 0x3F);
+  vlc.skip(e.length);
+  const int s0 = e.suffix_bits[0];
+  const std::uint32_t suffixes = vlc.get(s0 + e.suffix_bits[1]);
+  u[0] = e.base[0] + static_cast<int>(suffixes & ((1u << s0) - 1));
+  u[1] = e.base[1] + static_cast<int>(suffixes >> s0);
+  // From 5 + 28 on, a 4-bit extension adds 4 times its value, the first quad's first.
+  for (int k = 0; k < 2; ++k)
+    if (e.suffix_bits[k] == 5 && u[static_cast<std::size_t>(k)] >= 5 + 28)
+      u[static_cast<std::size_t>(k)] += 4 * static_cast<int>(vlc.get(4));
+}
+
+// One quad of a row as the cleanup's first phase leaves it for the second: its significance
+// pattern (all of it: every sample it names has MagSgn bits, inside the block or not), the EMB
+// patterns, U_q, and which of its samples lie inside the block.
+struct RowQuad {
+  VlcEntry code;
+  int exponent_bits = 0;
+  std::uint8_t inside = 0;
+};
+
 // The largest U_q whose quad's MagSgn bits (four samples' at most) one ensure() covers.
 constexpr int kOneReadExponent = 14;
 
-// The cleanup pass over the whole block: writes every sample of `out` unless it finds a fault. Built for
-// x86-64-v3 as well (simd_dispatch/scalar_clones.h), everything inlined into it.
+// The cleanup pass over the whole block: writes every sample of `out` unless it finds a fault. Each
+// row of quads in two phases: the significance and exponents of all its quads (MEL, CxtVLC and
+// U-VLC: the VLC stream), then their magnitudes and signs (the MagSgn stream), which need the row
+// above's exponents but nothing of their own row's. Built for x86-64-v3 as well
+// (simd_dispatch/scalar_clones.h), everything inlined into it.
 [[gnu::flatten, GPUJ2K_X86_64_V3_CLONES]] CleanupFault decode_cleanup(std::span<const std::uint8_t> segment,
                                                                       std::size_t pcup, int plane, int width,
                                                                       int height, std::int32_t* out) {
@@ -253,59 +318,70 @@ constexpr int kOneReadExponent = 14;
   QuadRow rows[2];
   QuadRow* above_row = &rows[0];
   QuadRow* this_row = &rows[1];
+  std::array<RowQuad, kMaxQuadsWide> quads;
   const int quads_wide = (width + 1) / 2, quads_high = (height + 1) / 2;
   const auto stride = static_cast<std::size_t>(width);
   for (int qy = 0; qy < quads_high; ++qy) {
     const bool first_row = qy == 0;
     const std::uint8_t row_inside = row_inside_mask(2 * qy + 1 < height);
     const VlcDecodingTable& table = vlc_decoding_table(first_row ? QuadRowKind::Initial : QuadRowKind::Other);
-    std::int32_t* row_out = out + static_cast<std::size_t>(2 * qy) * stride;
     const QuadRow& above = *above_row;
     QuadRow& row = *this_row;
-    // Quads in pairs (T.814 7.3.1): both quads' significance, their residuals, then MagSgn.
+    // Phase 1. Quads in pairs (T.814 7.3.1): both quads' significance, then their residuals.
     for (int qx = 0; qx < quads_wide; qx += 2) {
       const int count = std::min(2, quads_wide - qx);
-      std::array<VlcEntry, 2> codes{};
-      std::array<std::uint8_t, 2> inside{row_inside, row_inside};
-      if (2 * (qx + count) > width) inside[static_cast<std::size_t>(count - 1)] &= kLeftColumn;
-      bool has_residual[2] = {false, false};
+      RowQuad* pair = &quads[static_cast<std::size_t>(qx)];
       for (int k = 0; k < count; ++k) {
         const auto at = static_cast<std::size_t>(qx + k + 1);
         const int context = first_row
                                 ? first_row_context(row.rho[at - 1])
                                 : quad_context(above.rho[at - 1], above.rho[at], above.rho[at + 1], row.rho[at - 1]);
-        if (!read_quad(table, vlc, mel, context, codes[static_cast<std::size_t>(k)]))
-          return CleanupFault{CleanupFault::Kind::Codeword};
+        if (!read_quad(table, vlc, mel, context, pair[k].code)) return CleanupFault{CleanupFault::Kind::Codeword};
+        pair[k].inside = row_inside;
         // Significance now: the next quad's context depends on it.
-        row.rho[at] = codes[static_cast<std::size_t>(k)].rho & inside[static_cast<std::size_t>(k)];
-        has_residual[k] = codes[static_cast<std::size_t>(k)].u_off != 0;
+        row.rho[at] = pair[k].code.rho & row_inside;
+      }
+      if (2 * (qx + count) > width) {  // the last quad of an odd width: its right column is outside
+        pair[count - 1].inside &= kLeftColumn;
+        row.rho[static_cast<std::size_t>(qx + count)] &= kLeftColumn;
       }
       std::array<int, 2> u{};
-      read_pair_residuals(vlc, mel, has_residual, count, first_row, u);
+      const unsigned with = (pair[0].code.u_off != 0 ? 1u : 0u) | (count == 2 && pair[1].code.u_off != 0 ? 2u : 0u);
+      if (first_row) {
+        const bool has_residual[2] = {(with & 1) != 0, (with & 2) != 0};
+        read_pair_residuals(vlc, mel, has_residual, count, true, u);
+      } else if (with != 0) {
+        read_residuals(vlc, with, u);
+      }
       for (int k = 0; k < count; ++k) {
-        const VlcEntry& code = codes[static_cast<std::size_t>(k)];
-        const int x0 = 2 * (qx + k);
-        const std::uint8_t quad_inside = inside[static_cast<std::size_t>(k)];
-        std::uint8_t* bottom = &row.bottom_exponent[static_cast<std::size_t>(x0) + 1];
-        bottom[0] = bottom[1] = 0;
-        if (code.rho == 0) {
-          clear_quad(quad_inside, row_out + x0, stride);
-          continue;
-        }
-        const int exponent_bits =
-            exponent_predictor(&above.bottom_exponent[static_cast<std::size_t>(x0)], first_row, code.rho) +
+        RowQuad& q = pair[k];
+        if (q.code.rho == 0) continue;
+        q.exponent_bits =
+            exponent_predictor(&above.bottom_exponent[static_cast<std::size_t>(2 * (qx + k))], first_row, q.code.rho) +
             u[static_cast<std::size_t>(k)];
-        if (exponent_bits > 32) return CleanupFault{CleanupFault::Kind::Exponent, exponent_bits};
-        // v < 2^U_q, so (2 mu + 1) << p <= (2^U_q + 1) << p, below 2^31 where U_q + p <= 30. The
-        // unchecked path also takes its bits from one read of the MagSgn stream: at most four
-        // samples of U_q <= 14 bits.
-        if (quad_inside == 0xF && exponent_bits + plane <= kHtMaxMagnitudeBits && exponent_bits <= kOneReadExponent) {
-          magsgn.ensure(4 * exponent_bits);
-          read_quad_magnitudes<false>(code, exponent_bits, plane, quad_inside, magsgn, row_out + x0, stride, bottom);
-        } else if (!read_quad_magnitudes<true>(code, exponent_bits, plane, quad_inside, magsgn, row_out + x0, stride,
-                                               bottom)) {
-          return CleanupFault{CleanupFault::Kind::Magnitude};
-        }
+        if (q.exponent_bits > 32) return CleanupFault{CleanupFault::Kind::Exponent, q.exponent_bits};
+      }
+    }
+    // Phase 2: the row's magnitudes and signs, and its bottom samples' exponents for the next row.
+    std::int32_t* row_out = out + static_cast<std::size_t>(2 * qy) * stride;
+    for (int qx = 0; qx < quads_wide; ++qx) {
+      const RowQuad& q = quads[static_cast<std::size_t>(qx)];
+      const int x0 = 2 * qx;
+      std::uint8_t* bottom = &row.bottom_exponent[static_cast<std::size_t>(x0) + 1];
+      bottom[0] = bottom[1] = 0;
+      if (q.code.rho == 0) {
+        clear_quad(q.inside, row_out + x0, stride);
+        continue;
+      }
+      // v < 2^U_q, so (2 mu + 1) << p <= (2^U_q + 1) << p, below 2^31 where U_q + p <= 30. The
+      // unchecked path also takes its bits from one read of the MagSgn stream: at most four
+      // samples of U_q <= 14 bits.
+      if (q.inside == 0xF && q.exponent_bits + plane <= kHtMaxMagnitudeBits && q.exponent_bits <= kOneReadExponent) {
+        magsgn.ensure(4 * q.exponent_bits);
+        read_quad_magnitudes<false>(q.code, q.exponent_bits, plane, q.inside, magsgn, row_out + x0, stride, bottom);
+      } else if (!read_quad_magnitudes<true>(q.code, q.exponent_bits, plane, q.inside, magsgn, row_out + x0, stride,
+                                             bottom)) {
+        return CleanupFault{CleanupFault::Kind::Magnitude};
       }
     }
     std::swap(above_row, this_row);
