@@ -10,6 +10,7 @@
 #include "bit_packers.h"
 #include "block_simd.h"
 #include "vlc_encoding.h"
+#include "simd_dispatch/scalar_clones.h"
 
 namespace codec::ht {
 namespace {
@@ -262,47 +263,29 @@ std::vector<std::uint8_t> assemble(const std::vector<std::uint8_t>& magsgn, MelP
   return out;
 }
 
-}  // namespace
+// Scratch rows of the quad coder, each as wide as a row of quads (plus simd::kQuadRowOverwrite).
+struct QuadRowBuffers {
+  std::uint16_t* indices;
+  std::uint16_t* exponents;
+  std::uint16_t* patterns;       // adjustment only
+  std::uint32_t* magsgn_values;  // 4 per quad
+};
 
-std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitudes,
-                                         std::span<const std::uint8_t> negative, std::span<const std::uint8_t> lengths,
-                                         std::span<const std::uint8_t> lengths_below_top, int width, int height,
-                                         int plane, const CleanupAdjustment* adjustment) {
-  if (width < 1 || height < 1 || width > 1024 || height > 1024 || width * height > 4096)
-    throw std::invalid_argument("HT cleanup: a code-block of " + std::to_string(width) + "x" + std::to_string(height) +
-                                " is outside 1..1024 with at most 4096 samples");
-  const auto samples = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-  if (magnitudes.size() != samples || negative.size() != samples || lengths.size() != samples ||
-      lengths_below_top.size() != samples)
-    throw std::invalid_argument("HT cleanup: magnitudes, signs and bit lengths must hold width * height samples");
-  if (plane < 0 || plane > 30) throw std::invalid_argument("HT cleanup: the plane must be 0..30");
-  if (adjustment &&
-      (adjustment->fractions.size() != samples || plane > 23 || !adjustment->lowered || !adjustment->raised))
-    throw std::invalid_argument("HT cleanup: adjusting needs a fraction per sample, a plane of at most 23 and lists");
-  SampleGrid grid(lengths, lengths_below_top, width, height, plane);
-  if (adjustment) grid.prepare_adjustment_codes();
+// The cleanup's rows of quads into its three streams. Built for x86-64-v3 as well
+// (simd_dispatch/scalar_clones.h), everything inlined into it: on the 2048x2048 mosaic at
+// 0.75 bpp (1 thread) 1,138 M to 1,126 M instructions, the same file.
+[[gnu::flatten, GPUJ2K_X86_64_V3_CLONES]] void code_quad_rows(std::span<const std::uint32_t> magnitudes,
+                                                              std::span<const std::uint8_t> negative, SampleGrid& grid,
+                                                              int width, int height, int plane,
+                                                              const CleanupAdjustment* adjustment,
+                                                              const QuadRowBuffers& buffers, MagSgnPacker& magsgn,
+                                                              MelEncoder& mel, VlcPacker& vlc) {
   const int quads_wide = (width + 1) / 2, quads_high = (height + 1) / 2;
-
-  // Room for what a cleanup near a lossy cut usually takes (a 64x64 block's some hundreds of bytes
-  // of MagSgn), so that the streams rarely reallocate as they grow.
-  MagSgnPacker magsgn;
-  magsgn.reserve(samples / 2);
-  MelEncoder mel;
-  mel.reserve(samples / 32);
-  VlcPacker vlc;
-  vlc.reserve(samples / 8);
-  // Each row of quads is analysed at once (simd::quad_row_analysis); the loop below only emits.
-  thread_local std::vector<std::uint16_t> index_buffer, exponent_buffer, pattern_buffer;
-  thread_local std::vector<std::uint32_t> magsgn_buffer;
-  magsgn_buffer.resize(4 * static_cast<std::size_t>(quads_wide));
-  std::uint32_t* const magsgn_values = magsgn_buffer.data();
   const auto w = static_cast<std::size_t>(width);
-  index_buffer.resize(static_cast<std::size_t>(quads_wide) + simd::kQuadRowOverwrite);
-  exponent_buffer.resize(static_cast<std::size_t>(quads_wide) + simd::kQuadRowOverwrite);
-  std::uint16_t* const indices = index_buffer.data();
-  std::uint16_t* const exponents = exponent_buffer.data();
-  pattern_buffer.resize(adjustment ? static_cast<std::size_t>(quads_wide) + simd::kQuadRowOverwrite : 0);
-  std::uint16_t* const patterns = pattern_buffer.data();
+  std::uint16_t* const indices = buffers.indices;
+  std::uint16_t* const exponents = buffers.exponents;
+  std::uint16_t* const patterns = buffers.patterns;
+  std::uint32_t* const magsgn_values = buffers.magsgn_values;
   for (int qy = 0; qy < quads_high; ++qy) {
     const bool initial_row = qy == 0;
     const VlcEncodingTable& table = vlc_encoding_table(initial_row ? QuadRowKind::Initial : QuadRowKind::Other);
@@ -392,6 +375,50 @@ std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitud
         put_magsgn(magsgn_values + 4 * static_cast<std::size_t>(qx + k), quads[static_cast<std::size_t>(k)], magsgn);
     }
   }
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_cleanup(std::span<const std::uint32_t> magnitudes,
+                                         std::span<const std::uint8_t> negative, std::span<const std::uint8_t> lengths,
+                                         std::span<const std::uint8_t> lengths_below_top, int width, int height,
+                                         int plane, const CleanupAdjustment* adjustment) {
+  if (width < 1 || height < 1 || width > 1024 || height > 1024 || width * height > 4096)
+    throw std::invalid_argument("HT cleanup: a code-block of " + std::to_string(width) + "x" + std::to_string(height) +
+                                " is outside 1..1024 with at most 4096 samples");
+  const auto samples = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  if (magnitudes.size() != samples || negative.size() != samples || lengths.size() != samples ||
+      lengths_below_top.size() != samples)
+    throw std::invalid_argument("HT cleanup: magnitudes, signs and bit lengths must hold width * height samples");
+  if (plane < 0 || plane > 30) throw std::invalid_argument("HT cleanup: the plane must be 0..30");
+  if (adjustment &&
+      (adjustment->fractions.size() != samples || plane > 23 || !adjustment->lowered || !adjustment->raised))
+    throw std::invalid_argument("HT cleanup: adjusting needs a fraction per sample, a plane of at most 23 and lists");
+  SampleGrid grid(lengths, lengths_below_top, width, height, plane);
+  if (adjustment) grid.prepare_adjustment_codes();
+  const int quads_wide = (width + 1) / 2;
+
+  // Room for what a cleanup near a lossy cut usually takes (a 64x64 block's some hundreds of bytes
+  // of MagSgn), so that the streams rarely reallocate as they grow.
+  MagSgnPacker magsgn;
+  magsgn.reserve(samples / 2);
+  MelEncoder mel;
+  mel.reserve(samples / 32);
+  VlcPacker vlc;
+  vlc.reserve(samples / 8);
+  // Each row of quads is analysed at once (simd::quad_row_analysis); the loop below only emits.
+  thread_local std::vector<std::uint16_t> index_buffer, exponent_buffer, pattern_buffer;
+  thread_local std::vector<std::uint32_t> magsgn_buffer;
+  magsgn_buffer.resize(4 * static_cast<std::size_t>(quads_wide));
+  std::uint32_t* const magsgn_values = magsgn_buffer.data();
+  index_buffer.resize(static_cast<std::size_t>(quads_wide) + simd::kQuadRowOverwrite);
+  exponent_buffer.resize(static_cast<std::size_t>(quads_wide) + simd::kQuadRowOverwrite);
+  std::uint16_t* const indices = index_buffer.data();
+  std::uint16_t* const exponents = exponent_buffer.data();
+  pattern_buffer.resize(adjustment ? static_cast<std::size_t>(quads_wide) + simd::kQuadRowOverwrite : 0);
+  std::uint16_t* const patterns = pattern_buffer.data();
+  code_quad_rows(magnitudes, negative, grid, width, height, plane, adjustment,
+                 QuadRowBuffers{indices, exponents, patterns, magsgn_values}, magsgn, mel, vlc);
   std::vector<std::uint8_t> ms = magsgn.finish();
   return assemble(ms, mel.finish(), vlc);
 }

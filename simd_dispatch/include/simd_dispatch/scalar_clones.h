@@ -12,6 +12,10 @@
 // two targets, and with the sanitizers building both took twice as long for the build's slowest
 // objects (the EBCOT block decoder's passes: 97 s against 45 s at -O1 on a 2-vCPU VM), so the
 // sanitizer build tests the baseline clone's code alone.
+// A clone must not let an exception out: with GCC 12 a throw inside one, or from anything it calls,
+// ends the program (std::terminate) instead of unwinding to the caller's handler (checked with a
+// two-line function, internal and external linkage alike). Code that can meet malformed input
+// returns what went wrong and its caller throws (the HT block decoder's CleanupFault).
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
 #define GPUJ2K_X86_64_V3_CLONES gnu::target_clones("arch=x86-64-v3", "default")
 #else
