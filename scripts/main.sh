@@ -71,6 +71,9 @@ echo "== Encoder speed: j2kenc against OpenJPEG, Grok and OpenJPH on the 2048x20
 $python3 bench/speed --sizes 2048 --runs 3 --json "$work/speed.json"
 echo "== Decoder speed: j2kdec against OpenJPEG and Grok on the 2048x2048 mosaic (bench/decode)"
 $python3 bench/decode --sizes 2048 --runs 3 --json "$work/decode_speed.json"
+echo "== HTJ2K decoder speed: j2kdec against OpenJPEG, Grok and OpenJPH on j2kenc --ht's 2048x2048 streams (bench/decode)"
+$python3 bench/decode --sizes 2048 --runs 3 --reduce 0 --streams j2kenc-ht --decoders j2kdec-cpu,opj,grk,ojph \
+  --json "$work/decode_speed_ht.json"
 
 echo "== The virtual performer: speech to visemes to face, motion capture to the whole character"
 "$bin/performer" visemes --lang yue --text "你好" --fps 30 -o "$work/weights.csv" --wav "$work/hello.wav"

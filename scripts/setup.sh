@@ -20,7 +20,7 @@ PACKAGES=(
   clang libclang-rt-14-dev      # the sanitizer build and its libFuzzer targets (scripts/test.sh, fuzz.sh)
   clang-format                  # the C++ style check (scripts/check_format.sh)
   libopenjp2-tools grokj2k-tools  # reference decoders the codec's output is checked against
-  openjph-tools                 # ojph_compress, the HTJ2K reference in bench/speed (and its smoke test)
+  openjph-tools                 # ojph_compress and ojph_expand, the HTJ2K references in bench/speed and bench/decode
   python3 python3-matplotlib    # bench/table41, bench/psnr and Figure 4.13
   python3-dev pybind11-dev python3-numpy  # the Python bindings (python/) and their tests
 )

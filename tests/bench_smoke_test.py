@@ -4,7 +4,7 @@ table41 on 128x128 (one run, all four encoders, CSV and figure), psnr on one sma
 edges pattern, with a PNG gAMA chunk like the Kodak photographs carry) at the three
 rates of Table 4.2, speed on 128x128 (one run, all six encoders, 0.75 bpp and lossless, JSON), and
 decode on 128x128 (one run, the four decoders on j2kenc's and opj_compress's streams, full resolution
-and --reduce 2, JSON).
+and --reduce 2, JSON; then j2kdec, Grok and ojph_expand on j2kenc --ht's streams).
 It checks the shape of the Markdown tables (header columns, one row per
 size/encoder or image/rate/encoder, numbers that parse), not speed.
 
@@ -323,6 +323,34 @@ def test_decode(bin_dir, tmp):
               f"decode JSON streams: {data['streams']}")
 
 
+def test_decode_ht(bin_dir, tmp):
+    """bench/decode on j2kenc --ht's streams with ojph_expand: Grok sits out the lossy stream (its refinement
+    passes), ojph_expand takes part, and its column 'x ojph' appears."""
+    rc, out, err = run([sys.executable, os.path.join(ROOT, "bench", "decode"), "--sizes", "128", "--runs", "1",
+                        "--reduce", "0", "--streams", "j2kenc-ht", "--decoders", "j2kdec-cpu,grk,ojph",
+                        "--bin", bin_dir, "--out", os.path.join(tmp, "decode_ht")])
+    if not check(rc == 0, f"decode (HT) exited {rc}: {err.strip()[-2000:]}"):
+        return
+    heading = next((line for line in out.splitlines() if line.startswith("## 128x128: ")), None)
+    if not check(heading is not None, "decode (HT): no '## 128x128: ...' table heading"):
+        return
+    header, rows = table_after(out, heading)
+    check(header == ["stream", "rate", "resolution", "decoder", "wall s (median)", "x Grok", "x ojph", "peak RSS MB",
+                     "vs opj_decompress"], f"decode (HT) header: {header}")
+    expected = [("0.75 bpp", "j2kdec --dwt cpu"), ("0.75 bpp", "ojph_expand"), ("lossless", "j2kdec --dwt cpu"),
+                ("lossless", "grk_decompress"), ("lossless", "ojph_expand")]
+    check([(r[1], r[3]) for r in rows] == expected, f"decode (HT) rows: {[(r[1], r[3]) for r in rows]}")
+    for row in rows:
+        if not check(len(row) == len(header), f"decode (HT) row has {len(row)} cells: {row}"):
+            continue
+        check(row[0] == "j2kenc --ht", f"decode (HT) stream cell: {row[0]}")
+        x = number(row[6], f"decode (HT) {row[3]} x ojph")
+        if row[3] == "ojph_expand":
+            check(x == 1.0, f"decode (HT): ojph_expand's own x ojph is {row[6]}")
+        if row[1] == "lossless":
+            check(row[8] == "exact", f"decode (HT): {row[3]} differs from opj_decompress on a lossless stream")
+
+
 def test_errors(bin_dir):
     rc, out, err = run([sys.executable, os.path.join(ROOT, "bench", "psnr"), "/nonexistent/x.png", "--bin", bin_dir])
     check(rc == 1 and err.count("\n") == 1 and err.startswith("psnr: "), f"psnr on a missing file: rc {rc}, {err!r}")
@@ -344,6 +372,7 @@ def main():
         test_psnr(args.bin, tmp)
         test_speed(args.bin, tmp)
         test_decode(args.bin, tmp)
+        test_decode_ht(args.bin, tmp)
         test_errors(args.bin)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
