@@ -148,25 +148,39 @@ constexpr std::uint8_t kLeftColumn = 0x3;
 
 // Context c_q (T.814 7.3.5), as the encoder forms it: in the first row of quads from the four
 // samples to the quad's left (the quad before it, `left`); elsewhere from the row above (x0 - 1 ..
-// x0 + 2: the bottom samples of the quads above-left, above and above-right) and the two samples to
-// its left.
+// x0 + 2: the bottom samples of the quads above-left, above and above-right; north in bit 0, east
+// in bit 2, RowAbove) and the two samples to its left (west, bit 1).
 int first_row_context(std::uint8_t left) {
   return ((left | (left >> 1)) & 1) | (((left >> 2) & 1) << 1) | (((left >> 3) & 1) << 2);
 }
-int quad_context(std::uint8_t above_left, std::uint8_t above, std::uint8_t above_right, std::uint8_t left) {
-  const int north = ((above_left >> 3) | (above >> 1)) & 1;
-  const int west = ((left >> 2) | (left >> 3)) & 1;
-  const int east = ((above >> 3) | (above_right >> 1)) & 1;
-  return north | (west << 1) | (east << 2);
+int quad_context(std::uint8_t from_above, std::uint8_t left) {
+  return from_above | ((((left >> 2) | (left >> 3)) & 1) << 1);
 }
 
+// What each quad of a row (not the first) takes from the row above, for all of them at once in a
+// loop the compiler vectorises: its context's north and east bits, and the largest exponent of the
+// four samples above it (x0 - 1 .. x0 + 2), from which kappa_q comes.
+struct RowAbove {
+  std::array<std::uint8_t, kMaxQuadsWide> context;
+  std::array<std::uint8_t, kMaxQuadsWide> largest_exponent;
+  void take(const QuadRow& above, int quads_wide) {
+    for (int q = 0; q < quads_wide; ++q) {
+      const auto at = static_cast<std::size_t>(q);
+      const std::uint8_t left = above.rho[at], middle = above.rho[at + 1], right = above.rho[at + 2];
+      context[at] =
+          static_cast<std::uint8_t>((((left >> 3) | (middle >> 1)) & 1) | ((((middle >> 3) | (right >> 1)) & 1) << 2));
+      const std::uint8_t* e = &above.bottom_exponent[2 * at];
+      largest_exponent[at] = std::max(std::max(e[0], e[1]), std::max(e[2], e[3]));
+    }
+  }
+};
+
 // Exponent predictor kappa_q (T.814 7.3.7): 1 in the first row of quads and for a quad with at
-// most one significant sample; otherwise the largest exponent of the four samples above it
-// (`above`: theirs, from x0 - 1) less one, at least 1.
-int exponent_predictor(const std::uint8_t* above, bool first_row, int rho) {
+// most one significant sample; otherwise the largest exponent of the four samples above it less
+// one, at least 1.
+int exponent_predictor(int largest_above, bool first_row, int rho) {
   if (first_row || (rho & (rho - 1)) == 0) return 1;
-  const int largest = std::max(std::max(above[0], above[1]), std::max(above[2], above[3]));
-  return std::max(1, largest - 1);
+  return std::max(1, largest_above - 1);
 }
 
 // What stopped a malformed cleanup pass, for decode_ht_block to throw: the cleanup decoder itself
@@ -319,6 +333,7 @@ constexpr int kOneReadExponent = 14;
   QuadRow* above_row = &rows[0];
   QuadRow* this_row = &rows[1];
   std::array<RowQuad, kMaxQuadsWide> quads;
+  RowAbove from_above;
   const int quads_wide = (width + 1) / 2, quads_high = (height + 1) / 2;
   const auto stride = static_cast<std::size_t>(width);
   for (int qy = 0; qy < quads_high; ++qy) {
@@ -327,15 +342,15 @@ constexpr int kOneReadExponent = 14;
     const VlcDecodingTable& table = vlc_decoding_table(first_row ? QuadRowKind::Initial : QuadRowKind::Other);
     const QuadRow& above = *above_row;
     QuadRow& row = *this_row;
+    if (!first_row) from_above.take(above, quads_wide);
     // Phase 1. Quads in pairs (T.814 7.3.1): both quads' significance, then their residuals.
     for (int qx = 0; qx < quads_wide; qx += 2) {
       const int count = std::min(2, quads_wide - qx);
       RowQuad* pair = &quads[static_cast<std::size_t>(qx)];
       for (int k = 0; k < count; ++k) {
         const auto at = static_cast<std::size_t>(qx + k + 1);
-        const int context = first_row
-                                ? first_row_context(row.rho[at - 1])
-                                : quad_context(above.rho[at - 1], above.rho[at], above.rho[at + 1], row.rho[at - 1]);
+        const int context =
+            first_row ? first_row_context(row.rho[at - 1]) : quad_context(from_above.context[at - 1], row.rho[at - 1]);
         if (!read_quad(table, vlc, mel, context, pair[k].code)) return CleanupFault{CleanupFault::Kind::Codeword};
         pair[k].inside = row_inside;
         // Significance now: the next quad's context depends on it.
@@ -357,7 +372,7 @@ constexpr int kOneReadExponent = 14;
         RowQuad& q = pair[k];
         if (q.code.rho == 0) continue;
         q.exponent_bits =
-            exponent_predictor(&above.bottom_exponent[static_cast<std::size_t>(2 * (qx + k))], first_row, q.code.rho) +
+            exponent_predictor(from_above.largest_exponent[static_cast<std::size_t>(qx + k)], first_row, q.code.rho) +
             u[static_cast<std::size_t>(k)];
         if (q.exponent_bits > 32) return CleanupFault{CleanupFault::Kind::Exponent, q.exponent_bits};
       }
