@@ -157,9 +157,10 @@ int quad_context(std::uint8_t from_above, std::uint8_t left) {
   return from_above | ((((left >> 2) | (left >> 3)) & 1) << 1);
 }
 
-// What each quad of a row (not the first) takes from the row above, for all of them at once in a
-// loop the compiler vectorises: its context's north and east bits, and the largest exponent of the
-// four samples above it (x0 - 1 .. x0 + 2), from which kappa_q comes.
+// What each quad of a row (not the first) takes from the row above, for all of them in one short
+// loop before the row's VLC decoding, whose dependent chain it leaves shorter: its context's north
+// and east bits, and the largest exponent of the four samples above it (x0 - 1 .. x0 + 2), from
+// which kappa_q comes.
 struct RowAbove {
   std::array<std::uint8_t, kMaxQuadsWide> context;
   std::array<std::uint8_t, kMaxQuadsWide> largest_exponent;
