@@ -365,6 +365,7 @@ constexpr int kOneReadExponent = 14;
     for (int qx = 0; qx < quads_wide; qx += 2) {
       const int count = std::min(2, quads_wide - qx);
       RowQuad* pair = &quads[static_cast<std::size_t>(qx)];
+      unsigned with = 0;  // which of the pair have a U-VLC residual: bit 0 the first, bit 1 the second
       for (int k = 0; k < count; ++k) {
         const auto at = static_cast<std::size_t>(qx + k + 1);
         const int context =
@@ -373,13 +374,13 @@ constexpr int kOneReadExponent = 14;
         pair[k].inside = row_inside;
         // Significance now: the next quad's context depends on it.
         row.rho[at] = pair[k].code.rho & row_inside;
+        with |= static_cast<unsigned>(pair[k].code.u_off != 0) << k;
       }
       if (2 * (qx + count) > width) {  // the last quad of an odd width: its right column is outside
         pair[count - 1].inside &= kLeftColumn;
         row.rho[static_cast<std::size_t>(qx + count)] &= kLeftColumn;
       }
       std::array<int, 2> u{};
-      const unsigned with = (pair[0].code.u_off != 0 ? 1u : 0u) | (count == 2 && pair[1].code.u_off != 0 ? 2u : 0u);
       if (first_row) {
         const bool has_residual[2] = {(with & 1) != 0, (with & 2) != 0};
         read_pair_residuals(vlc, mel, has_residual, count, true, u);
