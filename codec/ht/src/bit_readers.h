@@ -13,6 +13,14 @@
 
 namespace codec::ht {
 
+// The index (0..7, least significant first) of the lowest zero byte of `word`, 8 for none. The
+// classic test marks the lowest zero byte exactly (a borrow can only mark bytes above it); the
+// bulk refills below use it to find the first byte that stuffing may affect.
+inline int lowest_zero_byte(std::uint64_t word) {
+  const std::uint64_t marks = (word - 0x0101010101010101u) & ~word & 0x8080808080808080u;
+  return marks == 0 ? 8 : std::countr_zero(marks) / 8;
+}
+
 // MagSgn (T.814 7.1.2): bytes forwards from the segment's start, bits least significant first; a
 // byte that follows 0xFF carries 7 bits (its most significant bit is a stuffed 0). Past the end it
 // reads 0xFF bytes, as the encoder's finish() assumes.
@@ -46,9 +54,7 @@ class MagSgnReader {
       if (!last_was_ff_ && pos_ + 8 <= bytes_.size()) {
         std::uint64_t word;
         std::memcpy(&word, bytes_.data() + pos_, sizeof word);
-        const std::uint64_t inverted = ~word;  // a 0xFF byte is a zero byte here
-        const std::uint64_t zero_bytes = (inverted - 0x0101010101010101u) & ~inverted & 0x8080808080808080u;
-        const int first_ff = zero_bytes == 0 ? 8 : std::countr_zero(zero_bytes) / 8;  // the lowest is exact
+        const int first_ff = lowest_zero_byte(~word);  // a 0xFF byte is a zero byte of ~word
         const int room = (64 - available_) / 8;
         const int take = std::min(room, first_ff + 1);
         if (take > 0) {
@@ -176,10 +182,9 @@ class VlcReader {
       if (pos_ >= 8) {
         std::uint64_t word;
         std::memcpy(&word, bytes_.data() + pos_ - 8, sizeof word);
-        const std::uint64_t next_first = __builtin_bswap64(word);            // bytes_[pos_ - 1] in the low byte
-        const std::uint64_t inverted = ~(next_first | 0x8080808080808080u);  // 0 where the low 7 bits are 1s
-        const std::uint64_t zero_bytes = (inverted - 0x0101010101010101u) & ~inverted & 0x8080808080808080u;
-        const int first_sevens = zero_bytes == 0 ? 8 : std::countr_zero(zero_bytes) / 8;  // the lowest is exact
+        const std::uint64_t next_first = __builtin_bswap64(word);  // bytes_[pos_ - 1] in the low byte
+        // A byte whose low 7 bits are all 1 is a zero byte of this.
+        const int first_sevens = lowest_zero_byte(~(next_first | 0x8080808080808080u));
         const int take = std::min((64 - available_) / 8, first_sevens);
         if (take > 0) {
           const std::uint64_t taken = take == 8 ? next_first : next_first & ((std::uint64_t{1} << (8 * take)) - 1);

@@ -89,43 +89,6 @@ int finish_uvlc(VlcReader& vlc, UvlcPrefix prefix, std::uint32_t suffix) {
   return u;
 }
 
-// The residuals of one or two quads (count), in the order the encoder writes them: both prefixes,
-// both suffixes, both extensions; in the first row, a pair that both have residuals first takes a
-// MEL symbol (T.814 7.3.6): 1 means both exceed 2 and are sent less 2; after a 0, a first residual
-// above 2 is followed by a single bit giving the second (1 or 2).
-void read_pair_residuals(VlcReader& vlc, MelDecoder& mel, const bool* has_residual, int count, bool initial_row,
-                         std::array<int, 2>& u) {
-  u = {0, 0};
-  const bool both = count == 2 && has_residual[0] && has_residual[1];
-  if (both && initial_row && !mel.decode()) {
-    const UvlcPrefix first = read_prefix(vlc);
-    if (first == UvlcPrefix::ThreeOrFour || first == UvlcPrefix::FiveOrMore) {
-      u[1] = 1 + static_cast<int>(vlc.get(1));
-      const std::uint32_t s = vlc.get(suffix_bits(first));
-      u[0] = finish_uvlc(vlc, first, s);
-      return;
-    }
-    const UvlcPrefix second = read_prefix(vlc);
-    const std::uint32_t s0 = vlc.get(suffix_bits(first)), s1 = vlc.get(suffix_bits(second));
-    u[0] = finish_uvlc(vlc, first, s0);
-    u[1] = finish_uvlc(vlc, second, s1);
-    return;
-  }
-  const int bonus = both && initial_row ? 2 : 0;  // reached only after a MEL 1 in the first row
-  std::array<UvlcPrefix, 2> prefixes{};
-  std::array<std::uint32_t, 2> suffixes{};
-  std::array<int, 2> coded{};
-  int n = 0;
-  for (int k = 0; k < count; ++k)
-    if (has_residual[k]) coded[static_cast<std::size_t>(n++)] = k;
-  for (int i = 0; i < n; ++i) prefixes[static_cast<std::size_t>(i)] = read_prefix(vlc);
-  for (int i = 0; i < n; ++i)
-    suffixes[static_cast<std::size_t>(i)] = vlc.get(suffix_bits(prefixes[static_cast<std::size_t>(i)]));
-  for (int i = 0; i < n; ++i)
-    u[static_cast<std::size_t>(coded[static_cast<std::size_t>(i)])] =
-        finish_uvlc(vlc, prefixes[static_cast<std::size_t>(i)], suffixes[static_cast<std::size_t>(i)]) + bonus;
-}
-
 // ---- The cleanup pass (T.814 7.3) -----------------------------------------------------------------
 
 // The widest row of quads a code-block has (1024 samples, T.800's limit).
@@ -210,52 +173,52 @@ bool read_quad(const VlcDecodingTable& table, VlcReader& vlc, MelDecoder& mel, i
 
 // MagSgn bits of a quad (T.814 7.3.8) whose top-left sample is out[0]: each significant sample's
 // v_n = 2 (mu - 1) + sign in U_q bits, less its top bit where e_k implies it (its value is then
-// e_1's bit). Writes the quad's samples inside the block (`inside`: rho's bit positions of those)
-// as the header says, sign times (2 mu + 1) << p = ((v_n less its sign bit) + 3) << p, and 0 for
-// the insignificant ones, and the bottom samples' exponents E = bit length of 2 mu - 1 = that of
-// v_n with its sign bit set. Where U_q + p stays within kHtMaxMagnitudeBits no sample can
-// overflow, and for a quad wholly inside whose bits one read of the stream covers (ensure() called
-// for them) there is no test per sample: most quads take that path (`Checked` false). False where
-// a magnitude overflows.
-template <bool Checked>
+// e_1's bit). Writes the quad's samples as the header says, sign times (2 mu + 1) << p =
+// ((v_n less its sign bit) + 3) << p, and 0 for the insignificant ones, and the bottom samples'
+// exponents E = bit length of 2 mu - 1 = that of v_n with its sign bit set.
+//
+// read_whole_quad is the path of most quads: wholly inside the block, U_q + p within
+// kHtMaxMagnitudeBits (no sample can overflow) and its bits covered by one ensure() of the MagSgn
+// stream. It has no branch on rho, whose bits a lossless block's quads mix too often for a branch to
+// be predicted (on the 2048x2048 mosaic a third of the decoder's mispredictions): an insignificant
+// sample takes 0 bits, reads v = 0 and writes 0.
+void read_whole_quad(const VlcEntry& code, int exponent_bits, int plane, MagSgnReader& magsgn, std::int32_t* out,
+                     std::size_t stride, std::uint8_t* bottom) {
+  const std::size_t position[4] = {0, stride, 1, stride + 1};
+  const unsigned implied_ones = code.e_k & code.e_1;  // the top bits e_k implies that are 1
+#pragma GCC unroll 4
+  for (int n = 0; n < 4; ++n) {
+    const unsigned significant = (code.rho >> n) & 1u;
+    const int bits = (exponent_bits - ((code.e_k >> n) & 1)) & -static_cast<int>(significant);
+    const std::uint64_t v =
+        magsgn.take(bits) | (static_cast<std::uint64_t>((implied_ones >> n) & significant) << (exponent_bits - 1));
+    const std::uint64_t doubled = (((v & ~std::uint64_t{1}) + 3) << plane) & -std::uint64_t{significant};
+    const auto negative = -static_cast<std::int32_t>(v & 1);  // all ones for a negative sample
+    out[position[n]] = (static_cast<std::int32_t>(doubled) ^ negative) - negative;
+    if (n & 1) bottom[n >> 1] = static_cast<std::uint8_t>(std::bit_width(v | significant));
+  }
+}
+
+// Any other quad, sample by sample: only the samples inside the block (`inside`: rho's bit
+// positions of those) are written, and each magnitude is checked against the caller's 31 bits.
+// False where one overflows.
 bool read_quad_magnitudes(const VlcEntry& code, int exponent_bits, int plane, std::uint8_t inside, MagSgnReader& magsgn,
                           std::int32_t* out, std::size_t stride, std::uint8_t* bottom) {
   const std::size_t position[4] = {0, stride, 1, stride + 1};
-  const unsigned implied_ones = code.e_k & code.e_1;  // the top bits e_k implies that are 1
-  if constexpr (!Checked) {
-    // Without a branch on rho, whose bits a lossless block's quads mix too often for the branch to be
-    // predicted (on the 2048x2048 mosaic a third of the decoder's mispredictions): an insignificant
-    // sample takes 0 bits, reads v = 0 and writes 0.
-#pragma GCC unroll 4
-    for (int n = 0; n < 4; ++n) {
-      const unsigned significant = (code.rho >> n) & 1u;
-      const int bits = (exponent_bits - ((code.e_k >> n) & 1)) & -static_cast<int>(significant);
-      const std::uint64_t v =
-          magsgn.take(bits) | (static_cast<std::uint64_t>((implied_ones >> n) & significant) << (exponent_bits - 1));
-      const std::uint64_t doubled = (((v & ~std::uint64_t{1}) + 3) << plane) & -std::uint64_t{significant};
-      const auto negative = -static_cast<std::int32_t>(v & 1);
-      out[position[n]] = (static_cast<std::int32_t>(doubled) ^ negative) - negative;
-      if (n & 1) bottom[n >> 1] = static_cast<std::uint8_t>(std::bit_width(v | significant));
-    }
-    return true;
-  }
+  const unsigned implied_ones = code.e_k & code.e_1;
 #pragma GCC unroll 4
   for (int n = 0; n < 4; ++n) {
-    const bool in_block = !Checked || ((inside >> n) & 1);
+    const bool in_block = (inside >> n) & 1;
     if (!((code.rho >> n) & 1)) {
       if (in_block) out[position[n]] = 0;
       continue;
     }
-    const int bits = exponent_bits - ((code.e_k >> n) & 1);
-    const std::uint64_t v = (Checked ? magsgn.get(bits) : magsgn.take(bits)) |
+    const std::uint64_t v = magsgn.get(exponent_bits - ((code.e_k >> n) & 1)) |
                             (static_cast<std::uint64_t>((implied_ones >> n) & 1) << (exponent_bits - 1));
     const std::uint64_t doubled = ((v & ~std::uint64_t{1}) + 3) << plane;
-    if constexpr (Checked) {
-      // (2 mu + 1) << p must fit the caller's 31 bits.
-      if (doubled >= (std::uint64_t{1} << (kHtMaxMagnitudeBits + 1))) return false;
-      if (!in_block) continue;
-    }
-    const auto negative = -static_cast<std::int32_t>(v & 1);  // all ones for a negative sample
+    if (doubled >= (std::uint64_t{1} << (kHtMaxMagnitudeBits + 1))) return false;
+    if (!in_block) continue;
+    const auto negative = -static_cast<std::int32_t>(v & 1);
     out[position[n]] = (static_cast<std::int32_t>(doubled) ^ negative) - negative;
     if (n & 1) bottom[n >> 1] = static_cast<std::uint8_t>(std::bit_width(v | 1));
   }
@@ -270,9 +233,10 @@ void clear_quad(std::uint8_t inside, std::int32_t* out, std::size_t stride) {
   if (inside & 8) out[stride + 1] = 0;
 }
 
-// The residuals u of a pair of quads outside the first row (T.814 7.3.6), for which of the two
-// have one (`with`: bit 0 the first quad, bit 1 the second): both prefixes, read together from one
-// look at the next 6 VLC bits through this table, then both suffixes, then both extensions.
+// The residuals u of a pair of quads (T.814 7.3.6; the first row's MEL rule is
+// read_first_row_residuals'), for which of the two have one (`with`: bit 0 the first quad, bit 1
+// the second, at least one): both prefixes, read together from one look at the next 6 VLC bits
+// through this table, then both suffixes, then both extensions.
 struct ResidualPrefixes {
   std::uint8_t length = 0;               // the prefixes' bits
   std::uint8_t suffix_bits[2] = {0, 0};  // 0, 1 or 5 for each quad (0 for a quad without one)
@@ -321,6 +285,30 @@ void read_residuals(VlcReader& vlc, unsigned with, std::array<int, 2>& u) {
   for (int k = 0; k < 2; ++k)
     if (e.suffix_bits[k] == 5 && u[static_cast<std::size_t>(k)] >= 5 + 28)
       u[static_cast<std::size_t>(k)] += 4 * static_cast<int>(vlc.get(4));
+}
+
+// The residuals of the first row's pair (T.814 7.3.6): where both quads have one, a MEL symbol
+// first. After a 1 both are coded as elsewhere (read_residuals), each less 2; after a 0, the first
+// quad's prefix comes first, and a first residual above 2 is then followed by a single bit giving
+// the second (1 or 2), else by the second's prefix, and then the suffixes and extensions in order.
+void read_first_row_residuals(VlcReader& vlc, MelDecoder& mel, unsigned with, std::array<int, 2>& u) {
+  if (with == 0) return;
+  if (with != 3 || mel.decode()) {
+    read_residuals(vlc, with, u);
+    if (with == 3) u = {u[0] + 2, u[1] + 2};
+    return;
+  }
+  const UvlcPrefix first = read_prefix(vlc);
+  if (first == UvlcPrefix::ThreeOrFour || first == UvlcPrefix::FiveOrMore) {
+    u[1] = 1 + static_cast<int>(vlc.get(1));
+    const std::uint32_t s = vlc.get(suffix_bits(first));
+    u[0] = finish_uvlc(vlc, first, s);
+    return;
+  }
+  const UvlcPrefix second = read_prefix(vlc);
+  const std::uint32_t s0 = vlc.get(suffix_bits(first)), s1 = vlc.get(suffix_bits(second));
+  u[0] = finish_uvlc(vlc, first, s0);
+  u[1] = finish_uvlc(vlc, second, s1);
 }
 
 // One quad of a row as the cleanup's first phase leaves it for the second: its significance
@@ -381,12 +369,10 @@ constexpr int kOneReadExponent = 14;
         row.rho[static_cast<std::size_t>(qx + count)] &= kLeftColumn;
       }
       std::array<int, 2> u{};
-      if (first_row) {
-        const bool has_residual[2] = {(with & 1) != 0, (with & 2) != 0};
-        read_pair_residuals(vlc, mel, has_residual, count, true, u);
-      } else if (with != 0) {
+      if (first_row)
+        read_first_row_residuals(vlc, mel, with, u);
+      else if (with != 0)
         read_residuals(vlc, with, u);
-      }
       for (int k = 0; k < count; ++k) {
         RowQuad& q = pair[k];
         if (q.code.rho == 0) continue;
@@ -407,14 +393,13 @@ constexpr int kOneReadExponent = 14;
         clear_quad(q.inside, row_out + x0, stride);
         continue;
       }
-      // v < 2^U_q, so (2 mu + 1) << p <= (2^U_q + 1) << p, below 2^31 where U_q + p <= 30. The
-      // unchecked path also takes its bits from one read of the MagSgn stream: at most four
-      // samples of U_q <= 14 bits.
+      // v < 2^U_q, so (2 mu + 1) << p <= (2^U_q + 1) << p, below 2^31 where U_q + p <= 30; four
+      // samples of U_q <= 14 bits are at most one ensure() of the MagSgn stream.
       if (q.inside == 0xF && q.exponent_bits + plane <= kHtMaxMagnitudeBits && q.exponent_bits <= kOneReadExponent) {
         magsgn.ensure(4 * q.exponent_bits);
-        read_quad_magnitudes<false>(q.code, q.exponent_bits, plane, q.inside, magsgn, row_out + x0, stride, bottom);
-      } else if (!read_quad_magnitudes<true>(q.code, q.exponent_bits, plane, q.inside, magsgn, row_out + x0, stride,
-                                             bottom)) {
+        read_whole_quad(q.code, q.exponent_bits, plane, magsgn, row_out + x0, stride, bottom);
+      } else if (!read_quad_magnitudes(q.code, q.exponent_bits, plane, q.inside, magsgn, row_out + x0, stride,
+                                       bottom)) {
         return CleanupFault{CleanupFault::Kind::Magnitude};
       }
     }

@@ -15,7 +15,9 @@
 // A clone must not let an exception out: with GCC 12 a throw inside one, or from anything it calls,
 // ends the program (std::terminate) instead of unwinding to the caller's handler (checked with a
 // two-line function, internal and external linkage alike). Code that can meet malformed input
-// returns what went wrong and its caller throws (the HT block decoder's CleanupFault).
+// returns what went wrong and its caller throws (the HT block decoder's CleanupFault). The block
+// encoders' clones grow byte vectors, so only running out of memory there throws (std::bad_alloc),
+// and ends the program.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
 #define GPUJ2K_X86_64_V3_CLONES gnu::target_clones("arch=x86-64-v3", "default")
 #else
