@@ -1,5 +1,6 @@
 #include "vlc_encoding.h"
 
+#include <bit>
 #include <stdexcept>
 #include <string>
 
@@ -13,7 +14,11 @@ VlcEncodingTable::VlcEncodingTable(QuadRowKind kind) {
     for (int at_top = residual ? 1 : 0; at_top < (residual ? 16 : 1); ++at_top) {
       if (residual && ((at_top & ~row.rho) != 0 || (row.e_k & at_top) != row.e_1)) continue;
       VlcCode& code = codes_[index(row.context, row.rho, residual, at_top)];
-      if (code.length == 0 || row.length < code.length) code = VlcCode{row.codeword, row.length, row.e_k};
+      // Each sample in e_k sends one MagSgn bit fewer, so the codeword that costs least is the
+      // one whose length less its e_k count is smallest.
+      const int cost = row.length - std::popcount(static_cast<unsigned>(row.e_k));
+      if (code.length == 0 || cost < code.length - std::popcount(static_cast<unsigned>(code.e_k)))
+        code = VlcCode{row.codeword, row.length, row.e_k};
     }
   }
   // Every quad the cleanup pass can meet must have a codeword: any context with any pattern
