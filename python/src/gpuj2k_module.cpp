@@ -1,7 +1,8 @@
-// The Python module gpuj2k: JPEG 2000 encoding of NumPy arrays and image files through the public
-// API (gpuj2k/encoder.h). Arrays of shape (H, W) or (H, W, C), uint8, uint16 or int16 (any strides:
-// the API reads rows and pixels where they lie); the GIL is released while encoding; every
-// gpuj2k::Error becomes gpuj2k.Error (a ValueError) with the library's message.
+// The Python module gpuj2k: JPEG 2000 encoding (EBCOT or HTJ2K code-blocks) of NumPy arrays and
+// image files through the public API (gpuj2k/encoder.h), and decoding. Arrays of shape (H, W) or
+// (H, W, C), uint8, uint16 or int16 (any strides: the API reads rows and pixels where they lie);
+// the GIL is released while coding; every gpuj2k::Error becomes gpuj2k.Error (a ValueError) with
+// the library's message.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -33,18 +34,21 @@ std::vector<double> numbers(const py::object& value, const char* name) {
 
 // The options common to both entry points, from Python's keyword arguments.
 gpuj2k::EncodeOptions make_options(bool lossless, const py::object& rate, const py::object& psnr,
-                                   std::optional<double> size, int levels, const std::string& format, int threads,
-                                   const std::string& dwt, const std::shared_ptr<gpuj2k::Engine>& engine) {
+                                   std::optional<double> size, int levels, const std::string& format, bool ht,
+                                   int threads, const std::string& dwt, const std::shared_ptr<gpuj2k::Engine>& engine) {
   gpuj2k::EncodeOptions o;
   o.lossless = lossless;
+  o.ht = ht;
   o.rates_bpp = numbers(rate, "rate");
   o.psnr_db = numbers(psnr, "psnr");
   if (size) o.size_bytes = *size;
   o.levels = levels;
   if (format == "jp2")
     o.format = gpuj2k::Format::Jp2;
+  else if (format == "jph")
+    o.format = gpuj2k::Format::Jph;
   else if (format != "j2k")
-    throw gpuj2k::Error("format must be \"j2k\" or \"jp2\", got \"" + format + "\"");
+    throw gpuj2k::Error("format must be \"j2k\", \"jp2\" or \"jph\", got \"" + format + "\"");
   o.threads = threads;
   o.engine = engine;
   if (dwt == "cpu")
@@ -61,9 +65,10 @@ py::bytes to_bytes(const std::vector<std::uint8_t>& data) {
 }
 
 py::bytes encode(const py::array& array, bool lossless, const py::object& rate, const py::object& psnr,
-                 std::optional<double> size, int levels, int bits, const std::string& format, int threads,
+                 std::optional<double> size, int levels, int bits, const std::string& format, bool ht, int threads,
                  const std::string& dwt, const std::shared_ptr<gpuj2k::Engine>& engine) {
-  const gpuj2k::EncodeOptions options = make_options(lossless, rate, psnr, size, levels, format, threads, dwt, engine);
+  const gpuj2k::EncodeOptions options =
+      make_options(lossless, rate, psnr, size, levels, format, ht, threads, dwt, engine);
   if (array.ndim() != 2 && array.ndim() != 3)
     throw gpuj2k::Error("the array must have shape (height, width) or (height, width, components), got " +
                         std::to_string(array.ndim()) + " dimensions");
@@ -105,9 +110,10 @@ py::bytes encode(const py::array& array, bool lossless, const py::object& rate, 
 }
 
 py::bytes encode_file(const std::string& path, bool lossless, const py::object& rate, const py::object& psnr,
-                      std::optional<double> size, int levels, const std::string& format, int threads,
+                      std::optional<double> size, int levels, const std::string& format, bool ht, int threads,
                       const std::string& dwt, const std::shared_ptr<gpuj2k::Engine>& engine) {
-  const gpuj2k::EncodeOptions options = make_options(lossless, rate, psnr, size, levels, format, threads, dwt, engine);
+  const gpuj2k::EncodeOptions options =
+      make_options(lossless, rate, psnr, size, levels, format, ht, threads, dwt, engine);
   std::vector<std::uint8_t> out;
   {
     py::gil_scoped_release release;
@@ -222,14 +228,17 @@ PYBIND11_MODULE(gpuj2k, m) {
       .def_property_readonly("threads", &gpuj2k::Engine::threads);
   m.def("encode", &encode, py::arg("array"), py::kw_only(), py::arg("lossless") = false, py::arg("rate") = py::none(),
         py::arg("psnr") = py::none(), py::arg("size") = py::none(), py::arg("levels") = 5, py::arg("bits") = 0,
-        py::arg("format") = "j2k", py::arg("threads") = 0, py::arg("dwt") = "auto", py::arg("engine") = py::none(),
-        "Encodes a (H, W) or (H, W, C) array of uint8, uint16 or int16 and returns the codestream (or JP2 file) as "
-        "bytes. rate: bits per pixel per layer; psnr: dB per layer; size: bytes; bits: significant bits (0: the "
-        "dtype's).");
+        py::arg("format") = "j2k", py::arg("ht") = false, py::arg("threads") = 0, py::arg("dwt") = "auto",
+        py::arg("engine") = py::none(),
+        "Encodes a (H, W) or (H, W, C) array of uint8, uint16 or int16 and returns the codestream (or JP2 or JPH "
+        "file) as bytes. rate: bits per pixel per layer; psnr: dB per layer; size: bytes; bits: significant bits "
+        "(0: the dtype's); format: \"j2k\", \"jp2\" or \"jph\" (HT only); ht: HTJ2K (Part 15) code-blocks, one "
+        "quality layer.");
   m.def("encode_file", &encode_file, py::arg("path"), py::kw_only(), py::arg("lossless") = false,
         py::arg("rate") = py::none(), py::arg("psnr") = py::none(), py::arg("size") = py::none(), py::arg("levels") = 5,
-        py::arg("format") = "j2k", py::arg("threads") = 0, py::arg("dwt") = "auto", py::arg("engine") = py::none(),
-        "Encodes an image file (PNM, PNG, TIFF, ...) and returns the bytes.");
+        py::arg("format") = "j2k", py::arg("ht") = false, py::arg("threads") = 0, py::arg("dwt") = "auto",
+        py::arg("engine") = py::none(),
+        "Encodes an image file (PNM, PNG, TIFF, ...) and returns the bytes; as encode.");
   m.def("decode", &decode, py::arg("data"), py::kw_only(), py::arg("reduce") = 0, py::arg("layers") = 0,
         py::arg("components") = py::none(), py::arg("region") = py::none(), py::arg("threads") = 0,
         py::arg("dwt") = "cpu",

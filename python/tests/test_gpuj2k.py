@@ -131,6 +131,49 @@ class EncodeArrays(unittest.TestCase):
             self.assertEqual(gpuj2k.encode_file(path, lossless=True), gpuj2k.encode(image, lossless=True))
 
 
+class EncodeHt(unittest.TestCase):
+    """ht=True: HTJ2K (Part 15) code-blocks, decoded by OpenJPEG and by our own decoder."""
+
+    def test_lossless_round_trips(self):
+        for dtype, bits, channels in [(np.uint8, 8, 3), (np.uint16, 12, 1), (np.uint16, 16, 3)]:
+            with self.subTest(dtype=dtype, bits=bits, channels=channels):
+                image = pattern(41, 29, channels, dtype, bits)
+                data = gpuj2k.encode(image, lossless=True, bits=bits, ht=True)
+                self.assertIn(b"\xff\x50", data[:data.index(b"\xff\x90")])  # a CAP marker in the main header
+                self.assertNotEqual(data, gpuj2k.encode(image, lossless=True, bits=bits))
+                np.testing.assert_array_equal(decode(data), image.astype(np.int64))
+                np.testing.assert_array_equal(gpuj2k.decode(data), image)
+
+    def test_byte_target_and_quality(self):
+        image = np.clip(pattern(128, 96, 3, np.uint8, 8).astype(np.int64) // 2 +
+                        np.random.default_rng(3).integers(0, 64, size=(128, 96, 3)), 0, 255).astype(np.uint8)
+        target = 128 * 96 // 8  # 1 bit per pixel
+        data = gpuj2k.encode(image, rate=1.0, ht=True)
+        self.assertLessEqual(len(data), target)
+        self.assertGreaterEqual(len(data), target * 0.995)
+        ht = psnr(decode(data), image)
+        self.assertAlmostEqual(psnr(gpuj2k.decode(data).astype(np.int64), image), ht, delta=0.01)
+        # HT trades some coding efficiency for speed (measured: 21.82 dB against EBCOT's 21.91 dB).
+        ebcot = psnr(decode(gpuj2k.encode(image, rate=1.0)), image)
+        self.assertGreater(ht, ebcot - 0.5)
+
+    def test_jph_files(self):
+        image = pattern(24, 40, 3, np.uint8, 8)
+        data = gpuj2k.encode(image, lossless=True, ht=True, format="jph")
+        self.assertEqual(data[4:8], b"jP  ")
+        self.assertEqual(data[16:20], b"ftyp")
+        self.assertEqual(data[20:24], b"jph ")  # the JPH brand (T.814 Annex D)
+        np.testing.assert_array_equal(decode(data, suffix=".jph"), image.astype(np.int64))
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "in.ppm")
+            with open(path, "wb") as f:
+                f.write(b"P6\n40 24\n255\n" + image.tobytes())
+            self.assertEqual(gpuj2k.encode_file(path, lossless=True, ht=True, format="jph"), data)
+        with self.assertRaises(gpuj2k.Error) as caught:
+            gpuj2k.encode(image, lossless=True, format="jph")
+        self.assertIn("HT", str(caught.exception))
+
+
 class BadInput(unittest.TestCase):
     def test_errors_carry_the_library_message(self):
         image = pattern(8, 8, 3, np.uint8, 8)
@@ -143,6 +186,7 @@ class BadInput(unittest.TestCase):
             (lambda: gpuj2k.encode(image, levels=40), "decomposition levels"),
             (lambda: gpuj2k.encode(image, bits=4), "does not fit 4-bit"),
             (lambda: gpuj2k.encode(image, format="png"), "format"),
+            (lambda: gpuj2k.encode(image, rate=[0.5, 1], ht=True), "layer"),
             (lambda: gpuj2k.encode(image, rate="fast"), "rate must be a number"),
             (lambda: gpuj2k.encode_file("/nonexistent/x.ppm"), "/nonexistent/x.ppm"),
         ]
