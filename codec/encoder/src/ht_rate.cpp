@@ -425,8 +425,9 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
       // still may (kBelowCalibrated). What is left out is left to the extension after the
       // allocation (ht_blocks_at_edges).
       const EstimatedCut cut = estimated_cut(stats, job.weight, threshold, bytes_per_bit);
-      const int lowest = cut.plane > 0 && cut.next_slope >= kBelowReach * threshold ? cut.plane - 1 : cut.plane;
       const bool leave_above = cut.plane >= 0 && cut.plane < top && cut.slope >= kAboveReach * threshold;
+      const int lowest =
+          !leave_above && cut.plane > 0 && cut.next_slope >= kBelowReach * threshold ? cut.plane - 1 : cut.plane;
       if (leave_above) {
         c.above_left_plane = cut.plane;
         c.above_left_slope = cut.slope;
@@ -437,8 +438,7 @@ void code_ht_candidates(CodedTile& coded, const EncodeParams& params, const Tier
         c.estimated_nothing = true;
       } else {
         add_candidates(c, block, planes_between(cut.plane, highest), ht_passes(params));
-        if (lowest < cut.plane && !leave_above &&
-            plane_below_may_pay(c, stats, cut.plane, job.weight, threshold, bytes_per_bit))
+        if (lowest < cut.plane && plane_below_may_pay(c, stats, cut.plane, job.weight, threshold, bytes_per_bit))
           add_candidates(c, block, std::vector<int>{lowest}, ht_passes(params));
       }
     }

@@ -7,6 +7,9 @@
 namespace codec::ht {
 
 VlcEncodingTable::VlcEncodingTable(QuadRowKind kind) {
+  // Each sample in e_k sends one MagSgn bit fewer, so the codeword that costs least is the one whose
+  // length less its e_k count is smallest.
+  const auto cost = [](int length, std::uint8_t e_k) { return length - std::popcount(static_cast<unsigned>(e_k)); };
   for (const CxtVlcRow& row : cxt_vlc_rows(kind)) {
     const bool residual = row.u_off != 0;
     // Without a residual the pattern is irrelevant (e_k is 0); with one, the row serves every
@@ -14,10 +17,7 @@ VlcEncodingTable::VlcEncodingTable(QuadRowKind kind) {
     for (int at_top = residual ? 1 : 0; at_top < (residual ? 16 : 1); ++at_top) {
       if (residual && ((at_top & ~row.rho) != 0 || (row.e_k & at_top) != row.e_1)) continue;
       VlcCode& code = codes_[index(row.context, row.rho, residual, at_top)];
-      // Each sample in e_k sends one MagSgn bit fewer, so the codeword that costs least is the
-      // one whose length less its e_k count is smallest.
-      const int cost = row.length - std::popcount(static_cast<unsigned>(row.e_k));
-      if (code.length == 0 || cost < code.length - std::popcount(static_cast<unsigned>(code.e_k)))
+      if (code.length == 0 || cost(row.length, row.e_k) < cost(code.length, code.e_k))
         code = VlcCode{row.codeword, row.length, row.e_k};
     }
   }
